@@ -1,0 +1,44 @@
+// triangle.hpp — chapter 05's exercise: a ray against a triangle.
+#pragma once
+
+#include "common/hit_record.hpp"
+#include "common/interval.hpp"
+#include "common/ray.hpp"
+#include "common/shapes.hpp"
+
+#include <optional>
+
+namespace rt::ch05 {
+
+// barycentric
+//
+// Inputs   tri, and a point p assumed to lie in the triangle's plane.
+// Returns  (alpha, beta, gamma) with p = alpha*a + beta*b + gamma*c and
+//          alpha + beta + gamma = 1. All three are >= 0 exactly when p is
+//          inside the triangle or on its edges.
+//          A degenerate triangle (zero area) returns NaN in all three.
+template <class T>
+vec3<T> barycentric(const triangle<T>& tri, const vec3<T>& p);
+
+// intersect_triangle — the lecture's method: hit the triangle's plane, then
+// test the hit point against the three edge half-planes.
+//
+// Inputs
+//   tri    the triangle (corners a, b, c)
+//   r      a ray r(t) = r.origin + t * r.direction
+//   range  the open interval (range.min, range.max) of acceptable t
+//
+// Returns
+//   the hit if the ray crosses the triangle (edges and corners count as
+//   inside) at a t in (range.min, range.max), else std::nullopt:
+//     t       ray parameter
+//     point   r.at(t)
+//     normal  the unit normal of the triangle's plane, turned to face the
+//             ray's origin (dot(normal, r.direction) < 0)
+//     object  left at -1
+//   A degenerate triangle (zero area) and a ray parallel to the triangle's
+//   plane are misses, never NaN.
+template <class T>
+std::optional<hit_record<T>> intersect_triangle(const triangle<T>& tri, const ray<T>& r, const interval<T>& range);
+
+}  // namespace rt::ch05

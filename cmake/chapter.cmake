@@ -1,0 +1,183 @@
+# rt_chapter(): everything one chapter builds, in one place.
+#
+#   rt_chapter(01
+#     TITLE     "unit sphere"
+#     EXERCISES unit_sphere.cpp   # the files a student edits (same names in solutions/NN-name/)
+#     PROGRAM   main.cpp          # renders the chapter's scene
+#     DEPENDS   01 02)            # earlier chapters whose exercises this one calls
+#
+# makes, for chapter NN in chapters/NN-name/:
+#   chNN_student     library of the student's exercise files (stubs until filled in)
+#   chNN_solution    library of solutions/NN-name/ (when that folder exists)
+#   chNN_exercises   whichever of the two this build selects (RT_SIDE, RT_STUDENT_CHAPTERS)
+#   chNN             the chapter's program, linked with chNN_exercises
+#   chNN_public_tests, chNN_hidden_tests   doctest executables from tests/public and tests/hidden
+# and registers ctest tests labelled chNN (ctest -L ch01 runs chapter 01 only):
+#   chNN.public.*, chNN.hidden.*   one ctest test per doctest test case
+#   chNN.render                    renders the scene and compares it with chapters/NN-name/reference.png
+#   chNN.stub.*                    (solution builds only) the untouched stubs compile, link and fail politely
+#   chNN.wrong.BUG                 (solution builds only) each realistic wrong implementation kept in
+#                                  tests/fixtures/wrong/chNN/BUG/ fails the hidden tests it names
+#
+# A wrong-implementation fixture is a folder tests/fixtures/wrong/chNN/BUG/ holding
+#   - one or more of the chapter's exercise files, with the bug in them
+#     (exercise files it does not hold are taken from solutions/), and
+#   - expect_fail.txt: one hidden test-case name per line (doctest wildcards
+#     allowed, '#' starts a comment) that the bug must fail.
+
+set(RT_STUB_CHECK_SCRIPT "${CMAKE_CURRENT_LIST_DIR}/expect_polite_failure.cmake")
+include(doctest)  # doctest_discover_tests, shipped by doctest-dev
+
+function(rt_chapter_side number out_side)
+  set(side "${RT_SIDE}")
+  if(number IN_LIST RT_STUDENT_CHAPTERS OR "all" IN_LIST RT_STUDENT_CHAPTERS)
+    set(side student)
+  endif()
+  set(${out_side} "${side}" PARENT_SCOPE)
+endfunction()
+
+# Links the hidden tests of chapter `id` against a wrong implementation and
+# checks that the hidden tests catch it.
+function(rt_wrong_fixtures id chapter_dir solution_dir exercises dependency_solution_libs)
+  file(GLOB fixture_dirs LIST_DIRECTORIES true "${PROJECT_SOURCE_DIR}/tests/fixtures/wrong/${id}/*")
+  if(NOT fixture_dirs OR NOT TARGET ${id}_hidden_tests)
+    return()
+  endif()
+  file(GLOB hidden_sources "${PROJECT_SOURCE_DIR}/tests/hidden/${id}_*.cpp")
+  # The hidden tests are compiled once and linked against every fixture.
+  add_library(${id}_hidden_objects OBJECT ${hidden_sources})
+  target_include_directories(${id}_hidden_objects PRIVATE "$<TARGET_PROPERTY:${id}_student,INTERFACE_INCLUDE_DIRECTORIES>")
+  target_link_libraries(${id}_hidden_objects PRIVATE rt_test_support)
+  foreach(dir IN LISTS fixture_dirs)
+    if(NOT IS_DIRECTORY "${dir}")
+      continue()
+    endif()
+    get_filename_component(bug "${dir}" NAME)
+    if(NOT EXISTS "${dir}/expect_fail.txt")
+      message(FATAL_ERROR "${dir}: a wrong-implementation fixture needs expect_fail.txt (the hidden tests it must fail)")
+    endif()
+    set(sources "")
+    foreach(f IN LISTS exercises)
+      if(EXISTS "${dir}/${f}")
+        list(APPEND sources "${dir}/${f}")
+      else()
+        list(APPEND sources "${solution_dir}/${f}")
+      endif()
+    endforeach()
+    set(target ${id}_wrong_${bug})
+    string(MAKE_C_IDENTIFIER "${target}" target)
+    add_executable(${target} ${sources})
+    target_include_directories(${target} PRIVATE "${chapter_dir}")
+    target_link_libraries(${target} PRIVATE ${id}_hidden_objects rt_test_support rt_common ${dependency_solution_libs})
+    set_target_properties(${target} PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/wrong")
+    add_test(NAME ${id}.wrong.${bug}
+             COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:${target}> -DEXPECT_FILE=${dir}/expect_fail.txt
+                     -P "${PROJECT_SOURCE_DIR}/cmake/expect_wrong_caught.cmake")
+    set_tests_properties(${id}.wrong.${bug} PROPERTIES LABELS "${id};wrong" TIMEOUT 120)
+  endforeach()
+endfunction()
+
+function(rt_chapter number)
+  cmake_parse_arguments(PARSE_ARGV 1 CH "" "TITLE;PROGRAM" "EXERCISES;DEPENDS")
+  get_filename_component(folder "${CMAKE_CURRENT_SOURCE_DIR}" NAME)
+  set(id "ch${number}")
+  string(REGEX REPLACE "^[0-9][0-9]-" "" short_name "${folder}")
+  set(chapter_dir "${CMAKE_CURRENT_SOURCE_DIR}")
+  set(solution_dir "${PROJECT_SOURCE_DIR}/solutions/${folder}")
+  rt_chapter_side(${number} side)
+  if(side STREQUAL "solutions" AND NOT EXISTS "${solution_dir}")
+    message(FATAL_ERROR "${id}: RT_SIDE=solutions but ${solution_dir} does not exist "
+                        "(a student kit has no solutions: configure with -DRT_SIDE=student)")
+  endif()
+
+  # Earlier chapters this one links: the side the build selects, or always
+  # the solutions when grading (so one mistake is charged once).
+  set(dependency_libs "")
+  foreach(dep IN LISTS CH_DEPENDS)
+    if(RT_DEPENDENCIES_FROM_SOLUTIONS AND TARGET ch${dep}_solution)
+      list(APPEND dependency_libs ch${dep}_solution)
+    else()
+      list(APPEND dependency_libs ch${dep}_exercises)
+    endif()
+  endforeach()
+
+  # The two sides share the chapter's exercise header (DESIGN.md rule 3).
+  set(student_sources "")
+  foreach(f IN LISTS CH_EXERCISES)
+    list(APPEND student_sources "${chapter_dir}/${f}")
+  endforeach()
+  add_library(${id}_student STATIC ${student_sources})
+  target_include_directories(${id}_student PUBLIC "${chapter_dir}")
+  target_link_libraries(${id}_student PUBLIC rt_common ${dependency_libs})
+
+  if(EXISTS "${solution_dir}")
+    set(solution_sources "")
+    foreach(f IN LISTS CH_EXERCISES)
+      list(APPEND solution_sources "${solution_dir}/${f}")
+    endforeach()
+    add_library(${id}_solution STATIC ${solution_sources})
+    target_include_directories(${id}_solution PUBLIC "${chapter_dir}")
+    target_link_libraries(${id}_solution PUBLIC rt_common ${dependency_libs})
+  endif()
+
+  add_library(${id}_exercises INTERFACE)
+  if(side STREQUAL "student")
+    target_link_libraries(${id}_exercises INTERFACE ${id}_student)
+  else()
+    target_link_libraries(${id}_exercises INTERFACE ${id}_solution)
+  endif()
+  set_property(GLOBAL APPEND PROPERTY RT_CHAPTERS ${id})
+
+  # The chapter's program.
+  add_executable(${id} "${chapter_dir}/${CH_PROGRAM}")
+  target_link_libraries(${id} PRIVATE ${id}_exercises)
+  set_target_properties(${id} PROPERTIES OUTPUT_NAME "${id}-${short_name}" RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/bin")
+
+  # Tests: every tests/<kind>/chNN_*.cpp file of the chapter.
+  foreach(kind public hidden)
+    file(GLOB test_sources "${PROJECT_SOURCE_DIR}/tests/${kind}/${id}_*.cpp")
+    if(NOT test_sources)
+      continue()
+    endif()
+    add_executable(${id}_${kind}_tests ${test_sources})
+    target_link_libraries(${id}_${kind}_tests PRIVATE ${id}_exercises rt_test_support)
+    set_target_properties(${id}_${kind}_tests PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/tests")
+    doctest_discover_tests(${id}_${kind}_tests TEST_PREFIX "${id}.${kind}."
+                           PROPERTIES TIMEOUT 60 LABELS "${id}-${kind}")
+  endforeach()
+
+  # The picture: render the scene and compare it with the reference render.
+  if(EXISTS "${chapter_dir}/reference.png")
+    add_test(NAME ${id}.render
+             COMMAND ${id} --out "${PROJECT_BINARY_DIR}/render/${id}.png" --compare "${chapter_dir}/reference.png")
+    set_tests_properties(${id}.render PROPERTIES LABELS "${id};render" TIMEOUT 120)
+  endif()
+
+  # On a solution build, check the untouched student side as well: it must
+  # compile, link, and fail with "not implemented yet", never crash or hang.
+  if(side STREQUAL "solutions" AND TARGET ${id}_public_tests)
+    file(GLOB public_sources "${PROJECT_SOURCE_DIR}/tests/public/${id}_*.cpp")
+    add_executable(${id}_public_tests_stub ${public_sources})
+    target_link_libraries(${id}_public_tests_stub PRIVATE ${id}_student rt_test_support)
+    set_target_properties(${id}_public_tests_stub PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/stub")
+    add_executable(${id}_stub "${chapter_dir}/${CH_PROGRAM}")
+    target_link_libraries(${id}_stub PRIVATE ${id}_student)
+    set_target_properties(${id}_stub PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/stub")
+
+    add_test(NAME ${id}.stub.tests_fail_politely
+             COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:${id}_public_tests_stub> -DEXPECT_EXIT=1
+                     -DEXPECT_OUTPUT=not\ implemented\ yet -DEXPECT_NO_PASS=1 -P "${RT_STUB_CHECK_SCRIPT}")
+    add_test(NAME ${id}.stub.program_fails_politely
+             COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:${id}_stub> -DEXPECT_EXIT=3
+                     -DEXPECT_OUTPUT=not\ implemented\ yet -DARGS=--out|${PROJECT_BINARY_DIR}/stub/${id}.png
+                     -P "${RT_STUB_CHECK_SCRIPT}")
+    set_tests_properties(${id}.stub.tests_fail_politely ${id}.stub.program_fails_politely
+                         PROPERTIES LABELS "${id};stub" TIMEOUT 120)
+
+    set(dependency_solution_libs "")
+    foreach(dep IN LISTS CH_DEPENDS)
+      list(APPEND dependency_solution_libs ch${dep}_solution)
+    endforeach()
+    rt_wrong_fixtures(${id} "${chapter_dir}" "${solution_dir}" "${CH_EXERCISES}" "${dependency_solution_libs}")
+  endif()
+endfunction()

@@ -1,0 +1,46 @@
+// program.hpp — the shared front end of every chapter's program.
+//
+// A chapter program only says how to render its scene; this file gives all
+// of them the same command line, the same report and the same polite exit
+// when a stub is reached:
+//
+//   ch01-unit-sphere [--out FILE.png] [--width W] [--height H]
+//                    [--precision float|double] [--compare REFERENCE.png]
+//
+// and prints one line such as
+//   ch01 unit sphere: 400x300, 3.1 ms, 38.7 Mrays/s -> out/ch01.png
+#pragma once
+
+#include "image.hpp"
+
+#include <functional>
+#include <string>
+
+namespace rt {
+
+enum class precision { single, double_ };
+
+struct program_options {
+    std::string out;          // PNG to write
+    int width = 0, height = 0;
+    precision prec = precision::double_;
+    std::string compare;      // optional reference PNG to compare against
+};
+
+struct chapter_program {
+    std::string id;           // "ch01"
+    std::string title;        // "unit sphere"
+    int default_width = 400;
+    int default_height = 300;
+    // Renders the chapter's scene. rays_traced is how many rays it cast in all
+    // (primary and, in later chapters, shadow rays), for the rays/s figure.
+    std::function<image(const program_options&, long& rays_traced)> render;
+};
+
+// Parses argv, renders, writes the PNG and prints the report line.
+// Returns the process exit status: 0 on success, 1 on bad arguments or an
+// error, 2 when --compare finds the picture past tolerance, and
+// rt::exit_not_implemented (3) when the render reached an exercise stub.
+int run_chapter_program(int argc, char** argv, const chapter_program& program);
+
+}  // namespace rt

@@ -1,0 +1,60 @@
+// timing.hpp — wall-clock measurement for programs and benchmarks.
+//
+// Timings in this course are reported, never asserted: a test that fails
+// because the machine was busy teaches nothing.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+namespace rt {
+
+class stopwatch {
+public:
+    stopwatch() : start_(clock::now()) {}
+    void restart() { start_ = clock::now(); }
+    double seconds() const { return std::chrono::duration<double>(clock::now() - start_).count(); }
+    double nanoseconds() const { return std::chrono::duration<double, std::nano>(clock::now() - start_).count(); }
+
+private:
+    using clock = std::chrono::steady_clock;
+    clock::time_point start_;
+};
+
+// Summary of repeated timings: the median is the figure to quote; min and
+// max show how steady the machine was.
+struct timing_summary {
+    double median = 0, min = 0, max = 0;
+};
+
+inline timing_summary summarize(std::vector<double> samples) {
+    timing_summary s;
+    if (samples.empty()) return s;
+    std::sort(samples.begin(), samples.end());
+    s.min = samples.front();
+    s.max = samples.back();
+    size_t n = samples.size();
+    s.median = n % 2 ? samples[n / 2] : 0.5 * (samples[n / 2 - 1] + samples[n / 2]);
+    return s;
+}
+
+// Nanoseconds per call of f(i) for i in [0, count), over `runs` runs.
+// f should return something that depends on its work, which is kept in a
+// volatile sink so the compiler cannot drop the loop.
+template <class F>
+timing_summary time_per_call(size_t count, int runs, F&& f) {
+    std::vector<double> samples;
+    volatile double sink = 0;
+    for (int r = 0; r < runs; ++r) {
+        double acc = 0;
+        stopwatch sw;
+        for (size_t i = 0; i < count; ++i) acc += static_cast<double>(f(i));
+        samples.push_back(sw.nanoseconds() / double(count ? count : 1));
+        sink = sink + acc;
+    }
+    (void)sink;
+    return summarize(std::move(samples));
+}
+
+}  // namespace rt
