@@ -1,0 +1,54 @@
+// main.cpp — chapter 02's program: one red sphere on a sky gradient.
+//
+// Each pixel's ray is tested against the sphere with *your* intersect_sphere.
+// The picture is split down the middle to show two steps of the lecture:
+//   * left half:  the first picture, hit or miss only: a flat red disc;
+//   * right half: the same sphere coloured by its outward unit normal,
+//     mapped from [-1, 1] to [0, 1] per channel (reddish to the right,
+//     greenish at the top, bluish facing the camera).
+// A miss shows the sky: white at the horizon blending to blue overhead.
+#include "sphere.hpp"
+
+#include "common/camera.hpp"
+#include "common/program.hpp"
+#include "common/render.hpp"
+
+namespace {
+
+using namespace rt;
+
+// The sky behind everything: blend white to light blue by how far up the ray points.
+template <class T>
+color sky(const ray<T>& r) {
+    const float up = float(normalize(r.direction).y);
+    const float s = 0.5f * (up + 1.0f);
+    return (1.0f - s) * color(1.0f, 1.0f, 1.0f) + s * color(0.5f, 0.7f, 1.0f);
+}
+
+template <class T>
+image render_sphere(const program_options& opt) {
+    auto frame = camera_frame<T>::look_at({0, 0, 0}, {0, 0, -1}, {0, 1, 0});
+    pinhole_camera<T> camera(frame, T(60), opt.width, opt.height);
+    const sphere<T> ball{{0, 0, -3}, T(1)};
+    return render(opt.width, opt.height, [&](int col, int row) {
+        ray<T> r = camera.primary_ray(col, row);
+        // t > 1: only what lies beyond the image plane is visible (chapter 01).
+        auto hit = ch02::intersect_sphere(ball, r, interval<T>::in_front_of_image_plane());
+        if (!hit) return sky(r);
+        if (col < opt.width / 2) return color(1.0f, 0.0f, 0.0f);
+        return color(convert<float>(hit->normal) * 0.5f + 0.5f);
+    });
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    rt::chapter_program program;
+    program.id = "ch02";
+    program.title = "sphere";
+    program.render = [](const rt::program_options& opt, long& rays) {
+        rays = long(opt.width) * opt.height;
+        return opt.prec == rt::precision::single ? render_sphere<float>(opt) : render_sphere<double>(opt);
+    };
+    return rt::run_chapter_program(argc, argv, program);
+}
