@@ -1,0 +1,55 @@
+// plane.cpp — reference solution for chapter 04.
+#include "plane.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rt::ch04 {
+
+namespace {
+
+// The plane's normal at unit length. Dividing by the largest component first
+// keeps length() from overflowing (normal ~ 1e30 in float) or underflowing
+// (normal ~ 1e-30) on the way: the direction is all that matters.
+template <class T>
+vec3<T> unit_normal(const vec3<T>& n) {
+    const T largest = std::max({std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)});
+    const vec3<T> scaled = n / largest;
+    return scaled / length(scaled);
+}
+
+}  // namespace
+
+template <class T>
+std::optional<hit_record<T>> intersect_plane(const plane<T>& p, const ray<T>& r, const interval<T>& range) {
+    // (o + t d - p0) . n = 0  gives  t = (p0 - o) . n / (d . n).
+    // Using the unit normal does not change t (the length of n cancels) but
+    // gives us the normal the hit record needs.
+    const vec3<T> n = unit_normal(p.normal);
+    const T facing = dot(r.direction, n);
+
+    // d . n == 0: the ray runs parallel to the plane (above it, or inside
+    // it). There is no single crossing, so it is a miss; dividing anyway
+    // would give +-infinity or 0/0 = NaN. Written as !(|d.n| > 0) so a NaN
+    // (zero normal, NaN input) is a miss as well.
+    if (!(std::fabs(facing) > T(0))) return std::nullopt;
+
+    const T t = dot(p.point - r.origin, n) / facing;
+    // A tiny d.n can still push t to infinity: contains() rejects infinity
+    // and NaN, but say so explicitly for the reader.
+    if (!std::isfinite(t) || !range.contains(t)) return std::nullopt;
+
+    hit_record<T> hit;
+    hit.t = t;
+    hit.point = r.at(t);
+    // Turn the normal against the ray: a plane seen from below is shaded
+    // like one seen from above.
+    hit.normal = facing < T(0) ? n : -n;
+    return hit;
+}
+
+template std::optional<hit_record<float>> intersect_plane(const plane<float>&, const ray<float>&, const interval<float>&);
+template std::optional<hit_record<double>> intersect_plane(const plane<double>&, const ray<double>&,
+                                                           const interval<double>&);
+
+}  // namespace rt::ch04
