@@ -1,0 +1,180 @@
+// Public tests for chapter 02: a sphere with any centre and radius.
+//
+// Each case is one idea from the lecture. When a check fails, its message
+// names that idea; the numbers follow.
+#include "sphere.hpp"
+
+#include "test_support.hpp"
+
+#include <cmath>
+
+using namespace rt;
+using rt::ch02::intersect_sphere;
+using rt::test::close;
+using rt::test::describe;
+
+namespace {
+
+template <class T>
+interval<T> everything_ahead() {
+    return {T(0), infinity<T>};
+}
+
+// A sphere of radius 2 centred at (1, 2, -3): away from the origin, not unit
+// size, so a formula that forgets the centre or the radius shows it.
+template <class T>
+sphere<T> off_centre_sphere() {
+    return {{T(1), T(2), T(-3)}, T(2)};
+}
+
+template <class T>
+std::string describe(const std::optional<hit_record<T>>& hit) {
+    if (!hit) return "a miss (std::nullopt)";
+    return "t = " + std::to_string(double(hit->t)) + ", point " + rt::test::describe(hit->point) + ", normal " +
+           rt::test::describe(hit->normal);
+}
+
+template <class T>
+bool close(const vec3<T>& a, const vec3<T>& b) {
+    return rt::test::close(a.x, b.x) && rt::test::close(a.y, b.y) && rt::test::close(a.z, b.z);
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("a ray that passes beside the sphere misses it", T, RT_SCALARS) {
+    // Parallel to z at x = 1, y = 5: its closest approach to the centre (1,2,-3) is 3 > radius 2.
+    ray<T> r{{1, 5, 5}, {0, 0, -1}};
+    auto hit = intersect_sphere(off_centre_sphere<T>(), r, everything_ahead<T>());
+    CHECK_MESSAGE(!hit.has_value(),
+                  "this ray passes 3 units from the centre of a sphere of radius 2: the discriminant is negative, "
+                  "there is no real root, and the answer must be a miss; got "
+                      << describe(hit));
+}
+
+TEST_CASE_TEMPLATE("a ray through the centre hits the near side first", T, RT_SCALARS) {
+    // From z = 5 straight at the centre (1,2,-3): enters at z = -1 (t = 6), leaves at z = -5 (t = 10).
+    ray<T> r{{1, 2, 5}, {0, 0, -1}};
+    auto hit = intersect_sphere(off_centre_sphere<T>(), r, everything_ahead<T>());
+    REQUIRE_MESSAGE(hit.has_value(),
+                    "the ray aims straight at the centre, so it must cross the sphere (positive discriminant); "
+                    "got a miss");
+    CHECK_MESSAGE(close(hit->t, T(6)),
+                  "the roots are t = 6 (entering) and t = 10 (leaving); the surface we see is the nearer root, "
+                  "t = 6. Got "
+                      << describe(hit));
+}
+
+TEST_CASE_TEMPLATE("a tangent ray touches the sphere once", T, RT_SCALARS) {
+    // At x = 3 = centre.x + radius the ray grazes the sphere at (3, 2, -3), t = 8.
+    ray<T> r{{3, 2, 5}, {0, 0, -1}};
+    auto hit = intersect_sphere(off_centre_sphere<T>(), r, everything_ahead<T>());
+    REQUIRE_MESSAGE(hit.has_value(),
+                    "a tangent ray has a discriminant of exactly zero: one (double) root, which is a hit. "
+                    "Test 'discriminant < 0' for a miss, not 'discriminant <= 0'");
+    CHECK_MESSAGE(close(hit->t, T(8)), "the tangent point (3,2,-3) is at t = 8; got " << describe(hit));
+}
+
+TEST_CASE_TEMPLATE("a sphere behind the ray is not hit", T, RT_SCALARS) {
+    // The ray starts at z = 5 and points away: both roots (t = -10 and t = -6) are negative.
+    ray<T> r{{1, 2, 5}, {0, 0, 1}};
+    auto hit = intersect_sphere(off_centre_sphere<T>(), r, everything_ahead<T>());
+    CHECK_MESSAGE(!hit.has_value(),
+                  "both roots are negative (t = -10 and t = -6): the sphere is behind the ray's origin, and a "
+                  "sphere behind the camera must not show up. Only t inside (tmin, tmax) counts; got "
+                      << describe(hit));
+}
+
+TEST_CASE_TEMPLATE("a ray starting inside the sphere hits the far root", T, RT_SCALARS) {
+    // From the centre, going up: the roots are t = -2 (behind) and t = 2 (in front).
+    ray<T> r{{1, 2, -3}, {0, 1, 0}};
+    auto hit = intersect_sphere(off_centre_sphere<T>(), r, everything_ahead<T>());
+    REQUIRE_MESSAGE(hit.has_value(),
+                    "the ray starts inside the sphere, so it must cross the surface on its way out; got a miss");
+    CHECK_MESSAGE(close(hit->t, T(2)),
+                  "the ray starts inside the sphere: the nearer root (t = -2) is behind it, so the hit in front "
+                  "of the origin is the far root, t = 2. Got "
+                      << describe(hit));
+}
+
+TEST_CASE_TEMPLATE("a non-unit direction scales t but not the hit point", T, RT_SCALARS) {
+    // Same ray as 'through the centre' but with direction (0,0,-4): every t is divided by 4.
+    ray<T> r{{1, 2, 5}, {0, 0, -4}};
+    auto hit = intersect_sphere(off_centre_sphere<T>(), r, everything_ahead<T>());
+    REQUIRE_MESSAGE(hit.has_value(), "the direction's length does not change which points the ray visits; got a miss");
+    CHECK_MESSAGE(close(hit->t, T(1.5)),
+                  "with direction (0,0,-4) the hit point (1,2,-1) is reached at t = 1.5. If you got 6, your "
+                  "formula assumes d . d = 1: keep a = d . d in the quadratic. Got "
+                      << describe(hit));
+    CHECK_MESSAGE(close(hit->point, vec3<T>(1, 2, -1)),
+                  "whatever the direction's length, the ray meets the sphere at (1,2,-1); got " << describe(hit));
+}
+
+TEST_CASE_TEMPLATE("the centre and radius are part of the equation", T, RT_SCALARS) {
+    // A diagonal ray at the off-centre sphere: it aims at the centre from (1,2,-3) + 6 * (2,1,2)/3,
+    // so it enters at distance 6 - 2 = 4 along the unit direction.
+    const vec3<T> d = vec3<T>(-2, -1, -2) / T(3);
+    ray<T> r{vec3<T>(1, 2, -3) - T(6) * d, d};
+    auto hit = intersect_sphere(off_centre_sphere<T>(), r, everything_ahead<T>());
+    REQUIRE_MESSAGE(hit.has_value(),
+                    "the ray aims at the centre (1,2,-3) of a sphere of radius 2; got a miss. Did you use "
+                    "o - C (origin minus centre) in the quadratic, and R^2 rather than 1?");
+    CHECK_MESSAGE(close(hit->t, T(4)),
+                  "the origin is 6 from the centre along a unit direction, so the ray enters at t = 6 - R = 4. "
+                  "Substitute r(t) into |p - C|^2 = R^2 with this sphere's C and R. Got "
+                      << describe(hit));
+}
+
+TEST_CASE_TEMPLATE("the normal is the outward unit vector (P - C) / r", T, RT_SCALARS) {
+    const vec3<T> d = normalize(vec3<T>(-1, -1, -3));
+    ray<T> r{vec3<T>(2, 3, 4), d};
+    const sphere<T> s = off_centre_sphere<T>();
+    auto hit = intersect_sphere(s, r, everything_ahead<T>());
+    REQUIRE_MESSAGE(hit.has_value(), "this ray crosses the sphere; got a miss");
+    const vec3<T> expected = (hit->point - s.center) / s.radius;
+    CHECK_MESSAGE(close(length(hit->normal), T(1)),
+                  "the normal must be a unit vector: (P - C) has length R, so divide it by the radius. Its "
+                  "length is "
+                      << length(hit->normal) << " in " << describe(hit));
+    CHECK_MESSAGE(dot(hit->normal, expected) > T(0),
+                  "the normal must point outwards, from the centre towards the hit point: (P - C), not (C - P). "
+                  "Got "
+                      << describe(hit));
+    CHECK_MESSAGE(close(hit->normal, expected),
+                  "the normal at P is (P - C) / R = " << rt::test::describe(expected) << "; got " << describe(hit));
+}
+
+TEST_CASE_TEMPLATE("the hit point is the ray at t", T, RT_SCALARS) {
+    const vec3<T> d = vec3<T>(T(-0.5), T(-1), T(-2));
+    ray<T> r{vec3<T>(2, 4, 2), d};
+    auto hit = intersect_sphere(off_centre_sphere<T>(), r, everything_ahead<T>());
+    REQUIRE_MESSAGE(hit.has_value(), "this ray crosses the sphere; got a miss");
+    CHECK_MESSAGE(close(hit->point, r.at(hit->t)),
+                  "the hit point must be r(t) = o + t d for the t you return: expected "
+                      << rt::test::describe(r.at(hit->t)) << ", got " << describe(hit));
+    CHECK_MESSAGE(close(length(hit->point - off_centre_sphere<T>().center), T(2)),
+                  "the hit point must lie on the sphere, at distance R = 2 from the centre; got " << describe(hit));
+    CHECK_MESSAGE(hit->object == -1,
+                  "intersect_sphere leaves the object index at -1: the scene loop of chapter 03 fills it in; got "
+                      << hit->object);
+}
+
+TEST_CASE_TEMPLATE("only hits inside the interval tmin < t < tmax count", T, RT_SCALARS) {
+    // Roots t = 6 and t = 10 (see 'through the centre').
+    ray<T> r{{1, 2, 5}, {0, 0, -1}};
+    const sphere<T> s = off_centre_sphere<T>();
+    auto before = intersect_sphere(s, r, interval<T>{T(0), T(5)});
+    CHECK_MESSAGE(!before.has_value(),
+                  "both roots (t = 6 and t = 10) are beyond tmax = 5, so nothing in the interval is hit; got "
+                      << describe(before));
+    auto skip_near = intersect_sphere(s, r, interval<T>{T(7), infinity<T>});
+    REQUIRE_MESSAGE(skip_near.has_value(),
+                    "with tmin = 7 the near root t = 6 is out, but the far root t = 10 is inside (7, inf); got "
+                    "a miss");
+    CHECK_MESSAGE(close(skip_near->t, T(10)),
+                  "with tmin = 7 the near root t = 6 does not count, so the answer is the far root t = 10; got "
+                      << describe(skip_near));
+    auto between = intersect_sphere(s, r, interval<T>{T(6.5), T(9.5)});
+    CHECK_MESSAGE(!between.has_value(),
+                  "in (6.5, 9.5) neither root (t = 6, t = 10) lies inside the interval, so it is a miss; got "
+                      << describe(between));
+}

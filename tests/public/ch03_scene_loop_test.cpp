@@ -1,0 +1,167 @@
+// Public tests for chapter 03: the closest hit among many objects.
+//
+// The objects here are not spheres but the simplest thing a ray can hit: a
+// "wall" that the ray crosses at one known parameter t (if that t is inside
+// the range it is asked about). That way these tests check your loop alone,
+// whatever the state of your chapter 02.
+#include "scene_loop.hpp"
+
+#include "test_support.hpp"
+
+#include <algorithm>
+#include <sstream>
+#include <vector>
+
+using namespace rt;
+using rt::ch03::closest_hit;
+using rt::test::close;
+
+namespace {
+
+// Object i is met at t = walls[i]. Its hit record carries a normal that
+// tells the walls apart: (i, 0, 0) + (0, 0, 1), so we can check that the
+// loop hands back the record of the object it says it hit.
+template <class T>
+ch03::object_intersector<T> walls_at(const std::vector<T>& walls) {
+    return [walls](int i, const ray<T>& r, const interval<T>& range) -> std::optional<hit_record<T>> {
+        const T t = walls[size_t(i)];
+        if (!range.contains(t)) return std::nullopt;
+        hit_record<T> hit;
+        hit.t = t;
+        hit.point = r.at(t);
+        hit.normal = vec3<T>(T(i), 0, 1);
+        return hit;  // object stays -1: filling it in is the loop's job
+    };
+}
+
+template <class T>
+ray<T> straight_ahead() {
+    return {{0, 0, 0}, {0, 0, -1}};
+}
+
+template <class T>
+interval<T> everything_ahead() {
+    return {T(0), infinity<T>};
+}
+
+template <class T>
+std::string describe(const std::optional<hit_record<T>>& hit) {
+    if (!hit) return "a miss (std::nullopt)";
+    std::ostringstream s;
+    s << "t = " << hit->t << " on object " << hit->object;
+    return s.str();
+}
+
+template <class T>
+std::string list(const std::vector<T>& walls) {
+    std::ostringstream s;
+    for (size_t i = 0; i < walls.size(); ++i) s << (i ? ", " : "") << "object " << i << " at t = " << walls[i];
+    return s.str();
+}
+
+std::string join(const std::vector<int>& numbers) {
+    std::ostringstream s;
+    for (size_t i = 0; i < numbers.size(); ++i) s << (i ? ", " : "") << numbers[i];
+    return numbers.empty() ? "none" : s.str();
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("the closest of several hits wins", T, RT_SCALARS) {
+    const std::vector<T> walls{T(5), T(2), T(8)};
+    auto hit = closest_hit<T>(3, walls_at(walls), straight_ahead<T>(), everything_ahead<T>());
+    REQUIRE_MESSAGE(hit.has_value(), "every object is hit in (0, inf) (" << list(walls) << "); got a miss");
+    CHECK_MESSAGE(close(hit->t, T(2)),
+                  "the ray sees the nearest surface: of " << list(walls) << " the smallest t is 2. Got "
+                                                          << describe(hit));
+}
+
+TEST_CASE_TEMPLATE("the hit says which object it came from", T, RT_SCALARS) {
+    const std::vector<T> walls{T(5), T(2), T(8)};
+    auto hit = closest_hit<T>(3, walls_at(walls), straight_ahead<T>(), everything_ahead<T>());
+    REQUIRE_MESSAGE(hit.has_value(), "every object is hit in (0, inf) (" << list(walls) << "); got a miss");
+    CHECK_MESSAGE(hit->object == 1,
+                  "the object tests leave `object` at -1; the loop knows which i it asked and must set "
+                  "hit.object = i. The nearest is object 1; got "
+                      << describe(hit));
+    CHECK_MESSAGE(hit->normal.x == T(1),
+                  "return the nearest object's own hit record (its t, point and normal), not a mix of "
+                  "records; got a normal from object "
+                      << hit->normal.x);
+}
+
+TEST_CASE_TEMPLATE("the answer does not depend on the order of the objects", T, RT_SCALARS) {
+    std::vector<T> walls{T(3), T(7), T(1.5), T(4), T(9)};
+    std::sort(walls.begin(), walls.end());
+    do {
+        auto hit = closest_hit<T>(5, walls_at(walls), straight_ahead<T>(), everything_ahead<T>());
+        const size_t nearest = size_t(std::min_element(walls.begin(), walls.end()) - walls.begin());
+        const bool ok = hit && close(hit->t, T(1.5)) && hit->object == int(nearest);
+        CHECK_MESSAGE(ok, "the closest hit is the same surface whatever order the objects are listed in. With "
+                              << list(walls) << " the answer is t = 1.5 on object " << nearest << "; got "
+                              << describe(hit));
+        if (!ok) break;  // one counter-example is enough to read
+    } while (std::next_permutation(walls.begin(), walls.end()));
+}
+
+TEST_CASE_TEMPLATE("nothing beyond tmax is hit", T, RT_SCALARS) {
+    const std::vector<T> walls{T(5), T(8)};
+    auto hit = closest_hit<T>(2, walls_at(walls), straight_ahead<T>(), interval<T>{T(0), T(4)});
+    CHECK_MESSAGE(!hit.has_value(),
+                  "every object (" << list(walls) << ") is beyond tmax = 4: pass the caller's range on, and the "
+                                      "answer is a miss; got "
+                                   << describe(hit));
+}
+
+TEST_CASE_TEMPLATE("nothing before tmin is hit", T, RT_SCALARS) {
+    // A primary ray only sees what lies beyond the image plane, t > 1.
+    const std::vector<T> walls{T(0.5), T(3)};
+    auto hit = closest_hit<T>(2, walls_at(walls), straight_ahead<T>(), interval<T>::in_front_of_image_plane());
+    REQUIRE_MESSAGE(hit.has_value(), "object 1 at t = 3 is in front of the image plane (t > 1); got a miss");
+    CHECK_MESSAGE((close(hit->t, T(3)) && hit->object == 1),
+                  "object 0 at t = 0.5 lies between the eye and the image plane, so it must not count: keep "
+                  "the caller's tmin when you ask each object. Expected t = 3 on object 1; got "
+                      << describe(hit));
+}
+
+TEST_CASE_TEMPLATE("an empty scene is a miss", T, RT_SCALARS) {
+    int calls = 0;
+    ch03::object_intersector<T> counting = [&](int, const ray<T>&, const interval<T>&) {
+        ++calls;
+        return std::optional<hit_record<T>>();
+    };
+    auto hit = closest_hit<T>(0, counting, straight_ahead<T>(), everything_ahead<T>());
+    CHECK_MESSAGE(!hit.has_value(), "with no objects there is nothing to hit; got " << describe(hit));
+    CHECK_MESSAGE(calls == 0, "with object_count = 0 there is no object to ask; the intersector was called "
+                                  << calls << " times");
+}
+
+TEST_CASE_TEMPLATE("each hit shrinks tmax for the objects after it", T, RT_SCALARS) {
+    // Record the range each object is asked about.
+    const std::vector<T> walls{T(5), T(2), T(8), T(1)};
+    const auto wall = walls_at(walls);
+    std::vector<int> asked;
+    std::vector<interval<T>> ranges;
+    ch03::object_intersector<T> recording = [&](int i, const ray<T>& r, const interval<T>& range) {
+        asked.push_back(i);
+        ranges.push_back(range);
+        return wall(i, r, range);
+    };
+    const interval<T> start{T(0.25), T(100)};
+    auto hit = closest_hit<T>(4, recording, straight_ahead<T>(), start);
+    REQUIRE_MESSAGE(hit.has_value(), "every object is hit in (0.25, 100) (" << list(walls) << "); got a miss");
+    CHECK_MESSAGE((close(hit->t, T(1)) && hit->object == 3), "the nearest is t = 1 on object 3; got " << describe(hit));
+    REQUIRE_MESSAGE(asked == std::vector<int>({0, 1, 2, 3}),
+                    "test every object exactly once, in order 0, 1, 2, 3; the objects asked were: "
+                        << join(asked));
+    const T expected_max[] = {T(100), T(5), T(2), T(2)};
+    for (size_t k = 0; k < 4; ++k) {
+        CHECK_MESSAGE(ranges[k].min == start.min, "every object is asked with the caller's tmin = 0.25; object "
+                                                      << k << " was asked with tmin = " << ranges[k].min);
+        CHECK_MESSAGE(ranges[k].max == expected_max[k],
+                      "after each hit, tmax shrinks to the closest t found so far, so farther objects cannot "
+                      "win. With "
+                          << list(walls) << ", object " << k << " should be asked with tmax = " << expected_max[k]
+                          << " but was asked with tmax = " << ranges[k].max);
+    }
+}
