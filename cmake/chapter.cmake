@@ -77,6 +77,47 @@ function(rt_wrong_fixtures id chapter_dir solution_dir exercises dependency_solu
   endforeach()
 endfunction()
 
+# Writes build/<dir>/rt_chapters/chNN.json: what the tools (the autograder,
+# the kit exporter) need to know about a chapter, so they grow with the
+# chapters without being edited. Paths to executables are the build's own.
+function(rt_json_list out)
+  set(items "")
+  foreach(item IN LISTS ARGN)
+    list(APPEND items "\"${item}\"")
+  endforeach()
+  list(JOIN items ", " joined)
+  set(${out} "[${joined}]" PARENT_SCOPE)
+endfunction()
+
+function(rt_chapter_description id number folder title chapter_dir side exercises depends)
+  rt_json_list(exercises_json ${exercises})
+  rt_json_list(depends_json ${depends})
+  set(targets "")
+  foreach(kind public hidden)
+    if(TARGET ${id}_${kind}_tests)
+      string(APPEND targets "  \"${kind}_tests\": \"$<TARGET_FILE:${id}_${kind}_tests>\",\n")
+    endif()
+  endforeach()
+  set(reference "")
+  if(EXISTS "${chapter_dir}/reference.png")
+    set(reference "${chapter_dir}/reference.png")
+  endif()
+  file(GENERATE OUTPUT "${PROJECT_BINARY_DIR}/rt_chapters/${id}.json" CONTENT
+"{
+  \"id\": \"${id}\",
+  \"number\": \"${number}\",
+  \"folder\": \"${folder}\",
+  \"title\": \"${title}\",
+  \"chapter_dir\": \"${chapter_dir}\",
+  \"side\": \"${side}\",
+  \"exercises\": ${exercises_json},
+  \"depends\": ${depends_json},
+${targets}  \"program\": \"$<TARGET_FILE:${id}>\",
+  \"reference\": \"${reference}\"
+}
+")
+endfunction()
+
 function(rt_chapter number)
   cmake_parse_arguments(PARSE_ARGV 1 CH "" "TITLE;PROGRAM" "EXERCISES;DEPENDS")
   get_filename_component(folder "${CMAKE_CURRENT_SOURCE_DIR}" NAME)
@@ -152,6 +193,9 @@ function(rt_chapter number)
              COMMAND ${id} --out "${PROJECT_BINARY_DIR}/render/${id}.png" --compare "${chapter_dir}/reference.png")
     set_tests_properties(${id}.render PROPERTIES LABELS "${id};render" TIMEOUT 120)
   endif()
+
+  rt_chapter_description(${id} "${number}" "${folder}" "${CH_TITLE}" "${chapter_dir}" "${side}"
+                         "${CH_EXERCISES}" "${CH_DEPENDS}")
 
   # On a solution build, check the untouched student side as well: it must
   # compile, link, and fail with "not implemented yet", never crash or hang.
