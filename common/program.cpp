@@ -17,7 +17,7 @@ int run_chapter_program(int argc, char** argv, const chapter_program& program) {
     opt.out = "out/" + program.id + ".png";
     opt.width = program.default_width;
     opt.height = program.default_height;
-    std::string prec = "double";
+    std::string prec = program.default_precision == precision::single ? "float" : "double";
 
     CLI::App app{program.id + ": renders the " + program.title + " scene to a PNG file"};
     app.add_option("-o,--out", opt.out, "PNG file to write")->capture_default_str();
@@ -28,6 +28,7 @@ int run_chapter_program(int argc, char** argv, const chapter_program& program) {
         ->capture_default_str();
     app.add_option("--compare", opt.compare, "reference PNG: exit 2 if the render differs past tolerance")
         ->check(CLI::ExistingFile);
+    app.add_flag("--error", opt.report_error, "also report the numerical error against a higher-precision reference");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -47,6 +48,11 @@ int run_chapter_program(int argc, char** argv, const chapter_program& program) {
         std::printf("%s %s: %dx%d, %s, %.1f ms, %.1f Mrays/s -> %s\n", program.id.c_str(), program.title.c_str(),
                     img.width, img.height, prec.c_str(), seconds * 1e3, double(rays) / seconds / 1e6,
                     opt.out.c_str());
+        if (opt.report_error) {
+            const std::string report =
+                program.error_report ? program.error_report(opt) : "this chapter has no error reference";
+            std::printf("%s error: %s\n", program.id.c_str(), report.c_str());
+        }
 
         if (!opt.compare.empty()) {
             compare_tolerance tol;

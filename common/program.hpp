@@ -5,7 +5,7 @@
 // when a stub is reached:
 //
 //   ch01-unit-sphere [--out FILE.png] [--width W] [--height H]
-//                    [--precision float|double] [--compare REFERENCE.png]
+//                    [--precision float|double] [--compare REFERENCE.png] [--error]
 //
 // and prints one line such as
 //   ch01 unit sphere: 400x300, 3.1 ms, 38.7 Mrays/s -> out/ch01.png
@@ -25,6 +25,7 @@ struct program_options {
     int width = 0, height = 0;
     precision prec = precision::double_;
     std::string compare;      // optional reference PNG to compare against
+    bool report_error = false;  // --error: also print the render's numerical error (chapter_program::error_report)
 };
 
 struct chapter_program {
@@ -32,9 +33,14 @@ struct chapter_program {
     std::string title;        // "unit sphere"
     int default_width = 400;
     int default_height = 300;
+    precision default_precision = precision::double_;  // when --precision is not given
     // Renders the chapter's scene. rays_traced is how many rays it cast in all
     // (primary and, in later chapters, shadow rays), for the rays/s figure.
     std::function<image(const program_options&, long& rays_traced)> render;
+    // Optional: with --error, called after the timed render; returns one line
+    // describing the render's error against a higher-precision reference
+    // (DESIGN.md: "where a reference exists, the error"). Not part of the time.
+    std::function<std::string(const program_options&)> error_report;
 };
 
 // Parses argv, renders, writes the PNG and prints the report line.
