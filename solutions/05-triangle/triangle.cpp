@@ -18,13 +18,20 @@ template <class T>
 int size_exponent(const vec3<T>& u, const vec3<T>& v) {
     const T largest =
         std::max({std::fabs(u.x), std::fabs(u.y), std::fabs(u.z), std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+    // Edges between 2^-30 and 2^30 need no rescaling (n . n ~ edge^4 fits even
+    // in a float), and that is every ordinary scene: skip the work there.
+    if (largest >= T(0x1p-30) && largest <= T(0x1p30)) return 0;
     if (!(largest > T(0)) || !std::isfinite(largest)) return 0;  // degenerate or not finite: nothing to rescale
     return std::ilogb(largest);
 }
 
+// v * 2^-exponent, as two exact multiplications: one factor 2^-exponent
+// would overflow a float when the edges are subnormal (exponent < -127).
 template <class T>
 vec3<T> scaled_down(const vec3<T>& v, int exponent) {
-    return {std::ldexp(v.x, -exponent), std::ldexp(v.y, -exponent), std::ldexp(v.z, -exponent)};
+    if (exponent == 0) return v;
+    const int first = -exponent / 2;
+    return v * std::ldexp(T(1), first) * std::ldexp(T(1), -exponent - first);
 }
 
 }  // namespace

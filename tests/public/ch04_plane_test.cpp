@@ -1,0 +1,152 @@
+// Public tests for chapter 04: a ray against a plane.
+//
+// Each case is one idea from the lecture. When a check fails, its message
+// names that idea; the numbers follow.
+#include "plane.hpp"
+
+#include "test_support.hpp"
+
+#include <cmath>
+
+using namespace rt;
+using rt::ch04::intersect_plane;
+using rt::test::close;
+using rt::test::describe;
+
+namespace {
+
+template <class T>
+interval<T> everything_ahead() {
+    return {T(0), infinity<T>};
+}
+
+// The ground: the plane y = 0 with its normal pointing up.
+template <class T>
+plane<T> ground() {
+    return {{0, 0, 0}, {0, 1, 0}, 0};
+}
+
+template <class T>
+std::string describe_hit(const std::optional<hit_record<T>>& hit) {
+    if (!hit) return "a miss (std::nullopt)";
+    return "t = " + std::to_string(double(hit->t)) + ", point " + describe(hit->point) + ", normal " +
+           describe(hit->normal);
+}
+
+template <class T>
+bool is_unit(const vec3<T>& v) {
+    return close(length(v), T(1));
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("a ray straight down onto the ground hits it", T, RT_SCALARS) {
+    // From height 3 straight down: t = (p0 - o).n / (d.n) = (0 - 3) / (-1) = 3.
+    ray<T> r{{1, 3, 2}, {0, -1, 0}};
+    auto hit = intersect_plane(ground<T>(), r, everything_ahead<T>());
+    REQUIRE_MESSAGE(hit.has_value(), "a ray pointing straight at the plane must hit it; got a miss");
+    CHECK_MESSAGE(close(hit->t, T(3)),
+                  "t = (p0 - o) . n / (d . n) = (0 - 3) / (-1) = 3 for a ray from height 3 going straight "
+                  "down; got "
+                      << describe_hit(hit));
+    CHECK_MESSAGE((close(hit->point.x, T(1)) && close(hit->point.y, T(0), T(1)) && close(hit->point.z, T(2))),
+                  "the hit point is r(t) = o + t d, which lies on the plane below the origin, (1, 0, 2); got "
+                      << describe_hit(hit));
+    CHECK_MESSAGE((is_unit(hit->normal) && close(hit->normal.y, T(1))),
+                  "the ray comes from above, so the normal facing it is the plane's own normal (0, 1, 0); got "
+                      << describe_hit(hit));
+}
+
+TEST_CASE_TEMPLATE("an oblique ray hits the plane where the formula says", T, RT_SCALARS) {
+    // From (0, 2, 0) along (1, -1, 0.5): d.n = -1, so t = 2 and the hit is (2, 0, 1).
+    ray<T> r{{0, 2, 0}, {1, -1, T(0.5)}};
+    auto hit = intersect_plane(ground<T>(), r, everything_ahead<T>());
+    REQUIRE_MESSAGE(hit.has_value(), "a ray going down towards the ground at an angle must hit it; got a miss");
+    CHECK_MESSAGE(close(hit->t, T(2)),
+                  "d . n = -1 and (p0 - o) . n = -2, so t = 2 (the direction is not unit length: t counts "
+                  "steps of d, not distance); got "
+                      << describe_hit(hit));
+    CHECK_MESSAGE((close(hit->point.x, T(2)) && close(hit->point.y, T(0), T(1)) && close(hit->point.z, T(1))),
+                  "the hit point r(2) = (2, 0, 1); got " << describe_hit(hit));
+}
+
+TEST_CASE_TEMPLATE("a ray parallel to the plane misses without NaN", T, RT_SCALARS) {
+    // Height 1, moving sideways: d.n = 0, and (p0 - o).n = -1, so the formula would give -1/0.
+    ray<T> r{{0, 1, 0}, {1, 0, -1}};
+    auto hit = intersect_plane(ground<T>(), r, everything_ahead<T>());
+    CHECK_MESSAGE(!hit.has_value(),
+                  "a ray parallel to the plane (d . n = 0) never reaches it: it is a miss. Dividing by d . n "
+                  "= 0 gives an infinity, which must not be returned as a hit; got "
+                      << describe_hit(hit));
+}
+
+TEST_CASE_TEMPLATE("a ray lying in the plane is a miss", T, RT_SCALARS) {
+    // In the plane and along it: d.n = 0 and (p0 - o).n = 0, so the formula is 0/0 = NaN.
+    ray<T> r{{-1, 0, 3}, {1, 0, 0}};
+    auto hit = intersect_plane(ground<T>(), r, everything_ahead<T>());
+    CHECK_MESSAGE(!hit.has_value(),
+                  "a ray lying in the plane touches it everywhere, so there is no single crossing: the "
+                  "contract calls it a miss. The formula gives 0 / 0 = NaN here; test d . n before "
+                  "dividing. Got "
+                      << describe_hit(hit));
+}
+
+TEST_CASE_TEMPLATE("a plane hit from behind gets a normal facing the ray", T, RT_SCALARS) {
+    // From below the ground, looking up: the plane's normal (0, 1, 0) points away from the ray.
+    ray<T> r{{0, -2, 0}, {0, 1, 0}};
+    auto hit = intersect_plane(ground<T>(), r, everything_ahead<T>());
+    REQUIRE_MESSAGE(hit.has_value(),
+                    "a plane has two sides and can be hit from either: d . n > 0 is a hit from behind, not a "
+                    "miss; got a miss");
+    CHECK_MESSAGE(close(hit->t, T(2)), "from y = -2 going up, the plane y = 0 is reached at t = 2; got "
+                                           << describe_hit(hit));
+    CHECK_MESSAGE(dot(hit->normal, r.direction) < T(0),
+                  "the normal must face the ray (normal . d < 0): when the ray comes from behind, flip the "
+                  "plane's normal. Got "
+                      << describe_hit(hit));
+    CHECK_MESSAGE((is_unit(hit->normal) && close(hit->normal.y, T(-1))),
+                  "seen from below, the normal facing the ray is (0, -1, 0); got " << describe_hit(hit));
+}
+
+TEST_CASE_TEMPLATE("a plane behind the ray origin is not hit", T, RT_SCALARS) {
+    // From height 2 going up: the plane y = 0 is behind, at t = -2.
+    ray<T> r{{0, 2, 0}, {0, 1, 0}};
+    auto hit = intersect_plane(ground<T>(), r, everything_ahead<T>());
+    CHECK_MESSAGE(!hit.has_value(),
+                  "the formula gives t = -2: the plane is behind the ray's origin. Only tmin < t < tmax "
+                  "counts; got "
+                      << describe_hit(hit));
+}
+
+TEST_CASE_TEMPLATE("hits outside (tmin tmax) do not count", T, RT_SCALARS) {
+    ray<T> r{{0, 3, 0}, {0, -1, 0}};  // reaches the ground at t = 3
+    auto too_far = intersect_plane(ground<T>(), r, interval<T>{T(0), T(2)});
+    CHECK_MESSAGE(!too_far.has_value(), "the crossing at t = 3 is beyond tmax = 2; got " << describe_hit(too_far));
+    auto too_near = intersect_plane(ground<T>(), r, interval<T>{T(4), T(10)});
+    CHECK_MESSAGE(!too_near.has_value(),
+                  "the crossing at t = 3 is before tmin = 4; got " << describe_hit(too_near));
+    auto at_tmax = intersect_plane(ground<T>(), r, interval<T>{T(0), T(3)});
+    CHECK_MESSAGE(!at_tmax.has_value(),
+                  "the interval is open: t = 3 with tmax = 3 is not inside (tmin < t < tmax); got "
+                      << describe_hit(at_tmax));
+    auto inside = intersect_plane(ground<T>(), r, interval<T>{T(1), T(5)});
+    CHECK_MESSAGE((inside.has_value() && close(inside->t, T(3))),
+                  "t = 3 lies inside (1, 5), so it is a hit; got " << describe_hit(inside));
+}
+
+TEST_CASE_TEMPLATE("a non-unit plane normal gives the same hit and a unit normal", T, RT_SCALARS) {
+    // The plane z = -4 written with normal (0, 0, 5): the length of n cancels out of t.
+    plane<T> wall{{7, -3, -4}, {0, 0, 5}, 0};
+    ray<T> r{{0, 0, 0}, {0, 0, -1}};
+    auto hit = intersect_plane(wall, r, everything_ahead<T>());
+    REQUIRE_MESSAGE(hit.has_value(), "the ray goes straight at the wall z = -4; got a miss");
+    CHECK_MESSAGE(close(hit->t, T(4)),
+                  "n appears above and below the fraction, so its length cancels: t = 4 whatever |n| is; got "
+                      << describe_hit(hit));
+    CHECK_MESSAGE(is_unit(hit->normal),
+                  "the hit record's normal must be unit length even when the plane's normal is not: "
+                  "normalise it. Got "
+                      << describe_hit(hit));
+    CHECK_MESSAGE(close(hit->normal.z, T(1)), "the ray comes from +z, so the normal facing it is (0, 0, 1); got "
+                                                  << describe_hit(hit));
+}
