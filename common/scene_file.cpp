@@ -1,0 +1,628 @@
+// scene_file.cpp — the scene-file reader: JSON syntax from nlohmann-json,
+// then a check of every field with an error that says where it is.
+//
+// nlohmann-json tells where a *syntax* error is, but once a file has parsed
+// it no longer knows where each value came from. So after it accepts the
+// text, a small scanner (the `locator` below) walks the same text once and
+// notes the byte offset of every key and value under a path such as
+// "spheres[1].radius". A field that fails a check is then reported at its
+// own line and column.
+#include "scene_file.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace rt {
+
+using json = nlohmann::json;
+
+scene_error::scene_error(std::string file, int line, int column, std::string field, std::string problem)
+    : std::runtime_error([&] {
+          std::string where = file;
+          if (line > 0) where += ":" + std::to_string(line) + ":" + std::to_string(column);
+          return where + ": " + (field.empty() ? "" : field + ": ") + problem;
+      }()),
+      file_(std::move(file)),
+      field_(std::move(field)),
+      problem_(std::move(problem)),
+      line_(line),
+      column_(column) {}
+
+namespace {
+
+// 1-based line and column of a byte offset.
+std::pair<int, int> line_and_column(const std::string& text, size_t offset) {
+    offset = std::min(offset, text.size());
+    int line = 1;
+    size_t line_start = 0;
+    for (size_t i = 0; i < offset; ++i)
+        if (text[i] == '\n') {
+            ++line;
+            line_start = i + 1;
+        }
+    return {line, int(offset - line_start) + 1};
+}
+
+// Where each key and value of an already-validated JSON text starts.
+class locator {
+public:
+    locator(const std::string& text, const std::string& source) : text_(text), source_(source) {
+        skip_space();
+        value("", 0);
+    }
+
+    // Offset of the value at path (of the whole document when unknown).
+    size_t value_at(const std::string& path) const {
+        auto it = values_.find(path);
+        return it == values_.end() ? 0 : it->second;
+    }
+    size_t key_at(const std::string& path) const {
+        auto it = keys_.find(path);
+        return it == keys_.end() ? value_at(path) : it->second;
+    }
+    // The path of the value that starts at offset ("" when none does).
+    std::string path_of_value(size_t offset) const {
+        for (const auto& [path, at] : values_)
+            if (at == offset) return path;
+        return "";
+    }
+    // The value's text as written, e.g. "1e999" for a number too large.
+    std::string token_at(const std::string& path) const {
+        size_t start = value_at(path), end = start;
+        while (end < text_.size() && !std::strchr(",]} \t\r\n/", text_[end])) ++end;
+        return text_.substr(start, std::min<size_t>(end - start, 40));
+    }
+
+private:
+    // Scene files are shallow; a limit keeps the recursion bounded on any input.
+    static constexpr int max_depth = 64;
+
+    const std::string& text_;
+    const std::string& source_;
+    size_t pos_ = 0;
+    std::map<std::string, size_t> values_, keys_;
+
+    [[noreturn]] void fail(size_t offset, const std::string& field, const std::string& problem) const {
+        auto [line, column] = line_and_column(text_, offset);
+        throw scene_error(source_, line, column, field, problem);
+    }
+
+    char peek() const { return pos_ < text_.size() ? text_[pos_] : '\0'; }
+
+    void skip_space() {
+        while (pos_ < text_.size()) {
+            char c = text_[pos_];
+            if (c == ' ' || c == '\t' || c == '\n' || c == '\r') {
+                ++pos_;
+            } else if (c == '/' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '/') {
+                while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
+            } else if (c == '/' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '*') {
+                size_t end = text_.find("*/", pos_ + 2);
+                pos_ = end == std::string::npos ? text_.size() : end + 2;
+            } else {
+                break;
+            }
+        }
+    }
+
+    // Returns the decoded string starting at pos_ (which is at its quote).
+    std::string string_token() {
+        size_t start = pos_++;
+        while (pos_ < text_.size() && text_[pos_] != '"') pos_ += text_[pos_] == '\\' ? 2 : 1;
+        ++pos_;
+        try {
+            return json::parse(text_.substr(start, pos_ - start)).get<std::string>();
+        } catch (const json::exception&) {
+            return {};  // cannot happen for text nlohmann accepted; never fatal
+        }
+    }
+
+    void value(const std::string& path, int depth) {
+        if (depth > max_depth) fail(pos_, path, "nested more than " + std::to_string(max_depth) + " levels deep");
+        values_[path] = pos_;
+        char c = peek();
+        if (c == '{') {
+            ++pos_;
+            skip_space();
+            std::map<std::string, bool> seen;
+            while (pos_ < text_.size() && peek() != '}') {
+                size_t key_pos = pos_;
+                std::string key = string_token();
+                std::string child = path.empty() ? key : path + "." + key;
+                if (seen[key]) fail(key_pos, child, "this key appears twice in the same object");
+                seen[key] = true;
+                keys_[child] = key_pos;
+                skip_space();
+                ++pos_;  // ':'
+                skip_space();
+                value(child, depth + 1);
+                skip_space();
+                if (peek() == ',') ++pos_;
+                skip_space();
+            }
+            ++pos_;
+        } else if (c == '[') {
+            ++pos_;
+            skip_space();
+            for (size_t i = 0; pos_ < text_.size() && peek() != ']'; ++i) {
+                value(path + "[" + std::to_string(i) + "]", depth + 1);
+                skip_space();
+                if (peek() == ',') ++pos_;
+                skip_space();
+            }
+            ++pos_;
+        } else if (c == '"') {
+            string_token();
+        } else {
+            while (pos_ < text_.size() && !std::strchr(",]} \t\r\n/", text_[pos_])) ++pos_;
+        }
+    }
+};
+
+// Levenshtein distance, to suggest the key a typo meant.
+size_t edit_distance(const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t diagonal = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diagonal = up;
+        }
+    }
+    return row[b.size()];
+}
+
+std::string join(const std::vector<std::string>& words) {
+    std::string out;
+    for (const auto& w : words) out += (out.empty() ? "" : ", ") + w;
+    return out;
+}
+
+std::string format_vector(const vec3d& v) {
+    std::ostringstream s;
+    s << "[" << v.x << ", " << v.y << ", " << v.z << "]";
+    return s.str();
+}
+
+// Checks one JSON document against the scene format and builds the scene.
+class reader {
+public:
+    reader(const std::string& text, const std::string& source, const json& doc)
+        : text_(text), source_(source), doc_(doc), where_(text, source) {}
+
+    scene_description read() {
+        scene_description d;
+        d.source = source_;
+        if (!doc_.is_object()) fail("", "expected the scene to be a JSON object { ... }, got " + describe(doc_, ""));
+        check_keys(doc_, "", {"description", "camera", "background", "ambient", "materials", "spheres", "planes",
+                              "triangles", "meshes", "lights"});
+        if (auto* j = member(doc_, "", "description"); j && !j->is_string())
+            fail("description", "expected a string, got " + describe(*j, "description"));
+        d.camera = read_camera(required(doc_, "", "camera", "an object describing the camera"), "camera");
+        if (auto* j = member(doc_, "", "background")) d.world.background = read_color(*j, "background");
+        if (auto* j = member(doc_, "", "ambient")) d.world.ambient = read_color(*j, "ambient");
+        read_materials(d);
+        read_list(d, "spheres", [&](const json& j, const std::string& p) { read_sphere(d, j, p); });
+        read_list(d, "planes", [&](const json& j, const std::string& p) { read_plane(d, j, p); });
+        read_list(d, "triangles", [&](const json& j, const std::string& p) { read_triangle(d, j, p); });
+        read_list(d, "meshes", [&](const json& j, const std::string& p) { read_mesh(d, j, p); });
+        read_list(d, "lights", [&](const json& j, const std::string& p) {
+            check_keys(j, p, {"position", "intensity"});
+            point_light light;
+            light.position = read_point(required(j, p, "position", "a point [x, y, z]"), p + ".position");
+            if (auto* i = member(j, p, "intensity")) light.intensity = read_color(*i, p + ".intensity");
+            d.world.lights.push_back(light);
+        });
+        return d;
+    }
+
+private:
+    const std::string& text_;
+    const std::string& source_;
+    const json& doc_;
+    locator where_;
+
+    [[noreturn]] void fail_at(size_t offset, const std::string& field, const std::string& problem) const {
+        auto [line, column] = line_and_column(text_, offset);
+        throw scene_error(source_, line, column, field, problem);
+    }
+    [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
+        fail_at(where_.value_at(field), field, problem);
+    }
+
+    static std::string child(const std::string& path, const std::string& key) {
+        return path.empty() ? key : path + "." + key;
+    }
+
+    // A short description of what was found, for "expected X, got Y".
+    std::string describe(const json& j, const std::string& path) const {
+        switch (j.type()) {
+            case json::value_t::null: return "null";
+            case json::value_t::boolean: return j.get<bool>() ? "true" : "false";
+            case json::value_t::string: {
+                std::string s = j.get<std::string>();
+                if (s.size() > 30) s = s.substr(0, 30) + "...";
+                return "the string \"" + s + "\"";
+            }
+            case json::value_t::array: return "an array of " + std::to_string(j.size()) + " element(s)";
+            case json::value_t::object: return "an object";
+            default: return where_.token_at(path);  // a number, as written in the file
+        }
+    }
+
+    const json* member(const json& object, const std::string&, const std::string& key) const {
+        auto it = object.find(key);
+        return it == object.end() ? nullptr : &*it;
+    }
+
+    const json& required(const json& object, const std::string& path, const std::string& key,
+                         const std::string& what) const {
+        if (auto* j = member(object, path, key)) return *j;
+        fail(path, "missing field \"" + key + "\" (" + what + ")");
+    }
+
+    void check_keys(const json& j, const std::string& path, const std::vector<std::string>& allowed) const {
+        if (!j.is_object()) fail(path, "expected an object { ... }, got " + describe(j, path));
+        for (auto it = j.begin(); it != j.end(); ++it) {
+            if (std::find(allowed.begin(), allowed.end(), it.key()) != allowed.end()) continue;
+            std::string best;
+            size_t best_distance = 3;  // suggest only close matches
+            for (const auto& a : allowed)
+                if (size_t dist = edit_distance(it.key(), a); dist < best_distance) best_distance = dist, best = a;
+            std::string problem = "unknown key \"" + it.key() + "\"";
+            if (!best.empty()) problem += " (did you mean \"" + best + "\"?)";
+            problem += "; the keys allowed here are: " + join(allowed);
+            std::string field = child(path, it.key());
+            fail_at(where_.key_at(field), field, problem);
+        }
+    }
+
+    double read_number(const json& j, const std::string& path) const {
+        if (!j.is_number()) fail(path, "expected a number, got " + describe(j, path));
+        double x = j.get<double>();
+        if (!std::isfinite(x)) fail(path, "expected a finite number, got " + describe(j, path));
+        return x;
+    }
+
+    // A number with a stated range; `what` says the range in words.
+    double read_number_in(const json& j, const std::string& path, double low, bool low_open, double high,
+                          const std::string& what) const {
+        double x = read_number(j, path);
+        bool ok = (low_open ? x > low : x >= low) && x <= high;
+        if (!ok) fail(path, "expected " + what + ", got " + describe(j, path));
+        return x;
+    }
+
+    long long read_integer(const json& j, const std::string& path, long long low, long long high,
+                           const std::string& what) const {
+        if (!j.is_number_integer()) fail(path, "expected " + what + ", got " + describe(j, path));
+        long long x = j.is_number_unsigned() ? (j.get<unsigned long long>() > (unsigned long long)high
+                                                    ? high + 1
+                                                    : (long long)j.get<unsigned long long>())
+                                             : j.get<long long>();
+        if (x < low || x > high) fail(path, "expected " + what + ", got " + describe(j, path));
+        return x;
+    }
+
+    vec3d read_triple(const json& j, const std::string& path, const std::string& what) const {
+        if (!j.is_array() || j.size() != 3) fail(path, "expected " + what + ", got " + describe(j, path));
+        vec3d v;
+        for (int i = 0; i < 3; ++i) {
+            std::string p = path + "[" + std::to_string(i) + "]";
+            const json& x = j[size_t(i)];
+            if (!x.is_number()) fail(p, "expected a number (part of " + what + "), got " + describe(x, p));
+            v[i] = read_number(x, p);
+        }
+        return v;
+    }
+
+    vec3d read_point(const json& j, const std::string& path) const {
+        vec3d v = read_triple(j, path, "a point [x, y, z]");
+        for (int i = 0; i < 3; ++i)
+            if (!(std::fabs(v[i]) <= max_coordinate))
+                fail(path + "[" + std::to_string(i) + "]",
+                     "expected a coordinate of magnitude at most 1e15 (so the scene also works in float), got " +
+                         where_.token_at(path + "[" + std::to_string(i) + "]"));
+        return v;
+    }
+
+    vec3d read_direction(const json& j, const std::string& path) const {
+        vec3d v = read_point(j, path);
+        if (!(length(v) > 0)) fail(path, "expected a non-zero direction vector, got [0, 0, 0]");
+        return v;
+    }
+
+    color read_color(const json& j, const std::string& path) const {
+        vec3d v = read_triple(j, path, "a colour [r, g, b]");
+        for (int i = 0; i < 3; ++i)
+            if (!(v[i] >= 0 && v[i] <= 1e15))
+                fail(path + "[" + std::to_string(i) + "]",
+                     "expected a colour component >= 0 (and at most 1e15), got " +
+                         where_.token_at(path + "[" + std::to_string(i) + "]"));
+        return color(float(v.x), float(v.y), float(v.z));
+    }
+
+    camera_description read_camera(const json& j, const std::string& path) const {
+        check_keys(j, path, {"type", "eye", "look_at", "up", "fov", "view_height", "width", "height"});
+        camera_description c;
+        if (auto* t = member(j, path, "type")) {
+            std::string p = path + ".type";
+            if (!t->is_string() || (*t != "pinhole" && *t != "orthographic"))
+                fail(p, "expected \"pinhole\" or \"orthographic\", got " + describe(*t, p));
+            c.type = *t == "pinhole" ? camera_description::kind::pinhole : camera_description::kind::orthographic;
+        }
+        bool pinhole = c.type == camera_description::kind::pinhole;
+        if (pinhole && member(j, path, "view_height"))
+            fail_at(where_.key_at(path + ".view_height"), path + ".view_height",
+                    "view_height belongs to an orthographic camera; a pinhole camera uses fov");
+        if (!pinhole && member(j, path, "fov"))
+            fail_at(where_.key_at(path + ".fov"), path + ".fov",
+                    "fov belongs to a pinhole camera; an orthographic camera uses view_height");
+        c.eye = read_point(required(j, path, "eye", "the camera position [x, y, z]"), path + ".eye");
+        c.look_at = read_point(required(j, path, "look_at", "the point the camera looks at [x, y, z]"),
+                               path + ".look_at");
+        if (auto* u = member(j, path, "up")) c.up = read_direction(*u, path + ".up");
+        if (auto* f = member(j, path, "fov"))
+            c.fov_degrees = read_number_in(*f, path + ".fov", 0, true, 179.999,
+                                           "a vertical field of view in degrees, between 0 and 180");
+        if (auto* h = member(j, path, "view_height"))
+            c.view_height = read_number_in(*h, path + ".view_height", 0, true, max_coordinate,
+                                           "a view height > 0");
+        if (auto* w = member(j, path, "width"))
+            c.width = int(read_integer(*w, path + ".width", 1, max_image_side, "a whole number of pixels from 1 to 16384"));
+        if (auto* h = member(j, path, "height"))
+            c.height =
+                int(read_integer(*h, path + ".height", 1, max_image_side, "a whole number of pixels from 1 to 16384"));
+
+        // A degenerate camera has no frame: check in both precisions, since a
+        // view direction that is fine in double can vanish when rounded to float.
+        vec3d back = c.eye - c.look_at;
+        if (!(length(convert<float>(back)) > 0) || !(length(back) > 0) ||
+            !(length(convert<float>(c.eye) - convert<float>(c.look_at)) > 0))
+            fail(path + ".look_at", "the camera looks at its own position " + format_vector(c.eye) +
+                                        ": eye and look_at must be different points");
+        if (!(length(cross(normalize(convert<float>(c.up)), convert<float>(normalize(back)))) > 1e-6f))
+            fail(member(j, path, "up") ? path + ".up" : path,
+                 "the up vector " + format_vector(c.up) +
+                     " is parallel to the view direction (eye to look_at); choose an up vector across it");
+        return c;
+    }
+
+    void read_materials(scene_description& d) const {
+        const json* list = member(doc_, "", "materials");
+        if (!list) {
+            d.world.materials.push_back(material{});  // one default grey material for every shape
+            d.material_names.push_back("");
+            return;
+        }
+        if (!list->is_array() || list->empty())
+            fail("materials", "expected a non-empty array of materials [ {...}, ... ], got " +
+                                  describe(*list, "materials"));
+        for (size_t i = 0; i < list->size(); ++i) {
+            std::string p = "materials[" + std::to_string(i) + "]";
+            const json& j = (*list)[i];
+            check_keys(j, p, {"name", "diffuse", "specular", "shininess", "checker"});
+            material m;
+            std::string name;
+            if (auto* n = member(j, p, "name")) {
+                if (!n->is_string()) fail(p + ".name", "expected a string, got " + describe(*n, p + ".name"));
+                name = n->get<std::string>();
+                if (std::find(d.material_names.begin(), d.material_names.end(), name) != d.material_names.end())
+                    fail(p + ".name", "two materials are named \"" + name + "\"; names must be unique");
+            }
+            if (auto* c = member(j, p, "diffuse")) m.diffuse = read_color(*c, p + ".diffuse");
+            if (auto* c = member(j, p, "specular")) m.specular = read_color(*c, p + ".specular");
+            if (auto* s = member(j, p, "shininess"))
+                m.shininess = float(read_number_in(*s, p + ".shininess", 0, false, 10000, "a number from 0 to 10000"));
+            if (auto* c = member(j, p, "checker")) {
+                m.checker = true;
+                m.checker_color = read_color(*c, p + ".checker");
+            }
+            d.world.materials.push_back(m);
+            d.material_names.push_back(name);
+        }
+    }
+
+    int read_material_ref(const scene_description& d, const json& object, const std::string& path) const {
+        const json* j = member(object, path, "material");
+        if (!j) return 0;
+        std::string p = path + ".material";
+        int count = int(d.world.materials.size());
+        if (j->is_string()) {
+            auto it = std::find(d.material_names.begin(), d.material_names.end(), j->get<std::string>());
+            if (it == d.material_names.end() || j->get<std::string>().empty()) {
+                std::vector<std::string> named;
+                for (const auto& n : d.material_names)
+                    if (!n.empty()) named.push_back("\"" + n + "\"");
+                fail(p, "no material is named \"" + j->get<std::string>() + "\" (" +
+                            (named.empty() ? std::string("no material has a name") : "the names are " + join(named)) +
+                            ")");
+            }
+            return int(it - d.material_names.begin());
+        }
+        return int(read_integer(*j, p, 0, count - 1,
+                                "a material name or an index from 0 to " + std::to_string(count - 1)));
+    }
+
+    template <class F>
+    void read_list(scene_description& d, const std::string& key, F&& read_one) const {
+        const json* list = member(doc_, "", key);
+        if (!list) return;
+        if (!list->is_array()) fail(key, "expected an array [ {...}, ... ], got " + describe(*list, key));
+        for (size_t i = 0; i < list->size(); ++i) read_one((*list)[i], key + "[" + std::to_string(i) + "]");
+        if (size_t(d.world.object_count()) > max_objects) fail(key, "more than 10 million objects in the scene");
+    }
+
+    void read_sphere(scene_description& d, const json& j, const std::string& p) const {
+        check_keys(j, p, {"center", "radius", "material"});
+        sphere<double> s;
+        s.center = read_point(required(j, p, "center", "the centre [x, y, z]"), p + ".center");
+        s.radius = read_number_in(required(j, p, "radius", "a number > 0"), p + ".radius", 0, true, max_coordinate,
+                                  "a radius > 0 (and at most 1e15)");
+        if (!(float(s.radius) > 0.0f))
+            fail(p + ".radius", "the radius " + where_.token_at(p + ".radius") + " rounds to 0 in float");
+        s.material = read_material_ref(d, j, p);
+        d.world.spheres.push_back(s);
+    }
+
+    void read_plane(scene_description& d, const json& j, const std::string& p) const {
+        check_keys(j, p, {"point", "normal", "material"});
+        plane<double> s;
+        s.point = read_point(required(j, p, "point", "a point on the plane [x, y, z]"), p + ".point");
+        s.normal = read_direction(required(j, p, "normal", "the plane's normal [x, y, z], not zero"), p + ".normal");
+        s.material = read_material_ref(d, j, p);
+        d.world.planes.push_back(s);
+    }
+
+    void check_area(const vec3d& a, const vec3d& b, const vec3d& c, const std::string& p) const {
+        if (!(length(cross(b - a, c - a)) > 0))
+            fail(p, "the corners " + format_vector(a) + ", " + format_vector(b) + ", " + format_vector(c) +
+                        " lie on one line: the triangle has zero area");
+    }
+
+    void read_triangle(scene_description& d, const json& j, const std::string& p) const {
+        check_keys(j, p, {"a", "b", "c", "material"});
+        triangle<double> t;
+        t.a = read_point(required(j, p, "a", "the first corner [x, y, z]"), p + ".a");
+        t.b = read_point(required(j, p, "b", "the second corner [x, y, z]"), p + ".b");
+        t.c = read_point(required(j, p, "c", "the third corner [x, y, z]"), p + ".c");
+        check_area(t.a, t.b, t.c, p);
+        t.material = read_material_ref(d, j, p);
+        d.world.triangles.push_back(t);
+    }
+
+    void read_mesh(scene_description& d, const json& j, const std::string& p) const {
+        check_keys(j, p, {"vertices", "faces", "material"});
+        const json& vs = required(j, p, "vertices", "an array of points [[x, y, z], ...]");
+        if (!vs.is_array() || vs.empty())
+            fail(p + ".vertices", "expected a non-empty array of points [[x, y, z], ...], got " +
+                                      describe(vs, p + ".vertices"));
+        std::vector<vec3d> vertices;
+        for (size_t i = 0; i < vs.size(); ++i)
+            vertices.push_back(read_point(vs[i], p + ".vertices[" + std::to_string(i) + "]"));
+        const json& fs = required(j, p, "faces", "an array of corner-index triples [[0, 1, 2], ...]");
+        if (!fs.is_array() || fs.empty())
+            fail(p + ".faces", "expected a non-empty array of index triples [[0, 1, 2], ...], got " +
+                                   describe(fs, p + ".faces"));
+        int material = read_material_ref(d, j, p);
+        long long last = (long long)vertices.size() - 1;
+        for (size_t i = 0; i < fs.size(); ++i) {
+            std::string fp = p + ".faces[" + std::to_string(i) + "]";
+            const json& f = fs[i];
+            if (!f.is_array() || f.size() != 3)
+                fail(fp, "expected three vertex indices [i, j, k], got " + describe(f, fp));
+            int idx[3];
+            for (int k = 0; k < 3; ++k)
+                idx[k] = int(read_integer(f[size_t(k)], fp + "[" + std::to_string(k) + "]", 0, last,
+                                          "a vertex index from 0 to " + std::to_string(last)));
+            triangle<double> t{vertices[size_t(idx[0])], vertices[size_t(idx[1])], vertices[size_t(idx[2])], material};
+            check_area(t.a, t.b, t.c, fp);
+            d.world.triangles.push_back(t);
+            if (size_t(d.world.object_count()) > max_objects) fail(fp, "more than 10 million objects in the scene");
+        }
+        ++d.mesh_count;
+    }
+};
+
+// "[json.exception.parse_error.101] parse error at line 1, column 5: syntax
+// error while parsing value - ..." -> "syntax error while parsing value - ...".
+std::string syntax_problem(const std::string& what) {
+    size_t column = what.find("column ");
+    size_t colon = column == std::string::npos ? std::string::npos : what.find(": ", column);
+    std::string problem = colon == std::string::npos ? what : what.substr(colon + 2);
+    return problem.empty() ? "syntax error" : problem;
+}
+
+// nlohmann-json stops at a number too large for a double (such as 1e400)
+// without saying where it is. Finds the number's text from the start
+// `from` on: the first occurrence that stands alone as a token.
+size_t find_number_token(const std::string& text, const std::string& token, size_t from) {
+    size_t i = from;
+    while (i < text.size()) {
+        char c = text[i];
+        if (c == '"') {  // skip a string, escapes included
+            for (++i; i < text.size() && text[i] != '"'; i += text[i] == '\\' ? 2 : 1) {
+            }
+            ++i;
+        } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') {
+            while (i < text.size() && text[i] != '\n') ++i;
+        } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
+            size_t end = text.find("*/", i + 2);
+            i = end == std::string::npos ? text.size() : end + 2;
+        } else if (text.compare(i, token.size(), token) == 0 &&
+                   (i + token.size() == text.size() || std::strchr(",]} \t\r\n/", text[i + token.size()]))) {
+            return i;
+        } else {
+            ++i;
+        }
+    }
+    return std::string::npos;
+}
+
+}  // namespace
+
+scene_description parse_scene(const std::string& text, const std::string& source) {
+    // Numbers too large for a double are blanked out (same length, so every
+    // offset stays put) and reported once the rest is known to be valid
+    // JSON, at their field.
+    std::string patched = text;
+    size_t first_overflow = std::string::npos;
+    std::string overflow_token;
+    json doc;
+    for (;;) {
+        try {
+            doc = json::parse(patched, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+            break;
+        } catch (const json::parse_error& e) {
+            size_t offset = e.byte > 0 ? size_t(e.byte - 1) : 0;
+            auto [line, column] = line_and_column(text, offset);
+            throw scene_error(source, line, column, "", "not valid JSON: " + syntax_problem(e.what()));
+        } catch (const json::out_of_range& e) {
+            // "... number overflow parsing '1e400'"
+            std::string what = e.what();
+            size_t open = what.find('\''), close = what.rfind('\'');
+            size_t at = std::string::npos;
+            std::string token;
+            if (open != std::string::npos && close > open + 1) {
+                token = what.substr(open + 1, close - open - 1);
+                at = find_number_token(patched, token, 0);
+            }
+            if (at == std::string::npos) throw scene_error(source, 0, 0, "", "not valid JSON: " + what);
+            if (first_overflow == std::string::npos) first_overflow = at, overflow_token = token;
+            patched.replace(at, token.size(), "0" + std::string(token.size() - 1, ' '));
+        } catch (const json::exception& e) {
+            throw scene_error(source, 0, 0, "", std::string("not valid JSON: ") + e.what());
+        }
+    }
+    if (first_overflow != std::string::npos) {
+        // Name the field through the locator of the patched text.
+        locator where(patched, source);
+        auto [line, column] = line_and_column(text, first_overflow);
+        throw scene_error(source, line, column, where.path_of_value(first_overflow),
+                          "expected a finite number, got " + overflow_token + " (too large even for a double)");
+    }
+    return reader(text, source, doc).read();
+}
+
+scene_description load_scene_file(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw scene_error(path, 0, 0, "", std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (!in) throw scene_error(path, 0, 0, "", "cannot read the file");
+    return parse_scene(text.str(), path);
+}
+
+}  // namespace rt
