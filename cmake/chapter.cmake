@@ -54,7 +54,12 @@ function(rt_wrong_fixtures id chapter_dir solution_dir exercises dependency_solu
     endif()
     get_filename_component(bug "${dir}" NAME)
     if(NOT EXISTS "${dir}/expect_fail.txt")
-      message(FATAL_ERROR "${dir}: a wrong-implementation fixture needs expect_fail.txt (the hidden tests it must fail)")
+      # Not fatal, so one unfinished fixture does not stop everybody's build;
+      # the fixture's own test fails and says why.
+      message(WARNING "${dir}: a wrong-implementation fixture needs expect_fail.txt (the hidden tests it must fail)")
+      add_test(NAME ${id}.wrong.${bug} COMMAND ${CMAKE_COMMAND} -E echo "${dir} has no expect_fail.txt")
+      set_tests_properties(${id}.wrong.${bug} PROPERTIES LABELS "${id};wrong" WILL_FAIL TRUE)
+      continue()
     endif()
     set(sources "")
     foreach(f IN LISTS exercises)
