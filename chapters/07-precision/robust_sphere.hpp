@@ -1,0 +1,64 @@
+// robust_sphere.hpp — chapter 07's exercise: the sphere test that keeps its digits.
+//
+// Same question as chapter 02 (where does a ray meet a sphere?), same
+// answer for exact arithmetic, but computed so that float still gets it
+// right when the sphere is thousands of radii away or huge and close.
+// README.md explains each step; this header is the contract. Your code goes
+// in robust_sphere.cpp, and the reference solution implements exactly the
+// same declaration.
+#pragma once
+
+#include "common/hit_record.hpp"
+#include "common/interval.hpp"
+#include "common/ray.hpp"
+#include "common/shapes.hpp"
+
+#include <optional>
+
+namespace rt::ch07 {
+
+// intersect_sphere_robust
+//
+// Inputs
+//   s      a sphere: centre s.center, radius s.radius. A radius that is not
+//          positive (zero, negative or NaN) describes no sphere: a miss.
+//   r      a ray r(t) = r.origin + t * r.direction; the direction need not be
+//          unit length. A zero direction is a miss.
+//   range  the open interval (range.min, range.max) of acceptable t.
+//
+// Returns (the same contract as ch02::intersect_sphere)
+//   the hit with the smallest t in (range.min, range.max), or std::nullopt:
+//     t       the ray parameter: the nearer root if it is in range, else the
+//             farther root if that is in range (e.g. the origin is inside)
+//     point   r.at(t)
+//     normal  the outward unit normal at the hit, (point - s.center) / radius
+//             (see README: computed from the centre-relative vector)
+//     object  left at -1
+//   A tangent ray (one double root) is a hit. Never a NaN or infinite t:
+//   NaN in any input is a miss.
+//
+// The numerical promise (README.md, "three places where digits vanish").
+// With f = r.origin - s.center, a = d.d and half_b = f.d:
+//   1. The discriminant is computed through the perpendicular distance:
+//      the vector from the centre to the foot of the perpendicular,
+//          foot = f - (half_b / a) d,
+//      is formed first (subtracted BEFORE squaring) and
+//          discriminant / 4 = a (radius^2 - foot.foot).
+//      Not f.f - (f.d)^2 / a, which subtracts after squaring.
+//   2. The roots come from the stable pair
+//          q = -(half_b + sign(half_b) sqrt(discriminant / 4)),
+//          roots  c / q  and  q / a,
+//      in which sign(half_b) makes the sum add two numbers of the same sign,
+//      so neither root is a difference of nearly equal numbers.
+//   3. c = f.f - radius^2 keeps the low halves of its squares (exact
+//      products through fma), so a huge sphere seen from close by, where
+//      f.f and radius^2 agree in almost every digit, still has an accurate c.
+//   Inputs whose squares overflow T (for float, coordinates or radii beyond
+//   about 1e18) are outside the promise.
+//
+// T is float, double or long double (the chapter program uses long double as
+// its reference): the same code is compiled for all three.
+template <class T>
+std::optional<hit_record<T>> intersect_sphere_robust(const sphere<T>& s, const ray<T>& r, const interval<T>& range);
+
+}  // namespace rt::ch07
