@@ -7,6 +7,8 @@
 #include "test_support.hpp"
 
 #include <cmath>
+#include <optional>
+#include <string>
 
 using namespace rt;
 using rt::ch02::intersect_sphere;
@@ -30,8 +32,8 @@ sphere<T> off_centre_sphere() {
 template <class T>
 std::string describe(const std::optional<hit_record<T>>& hit) {
     if (!hit) return "a miss (std::nullopt)";
-    return "t = " + std::to_string(double(hit->t)) + ", point " + rt::test::describe(hit->point) + ", normal " +
-           rt::test::describe(hit->normal);
+    return rt::test::describe(std::optional<T>(hit->t)) + ", point " + rt::test::describe(hit->point) +
+           ", normal " + rt::test::describe(hit->normal);
 }
 
 template <class T>
@@ -102,8 +104,8 @@ TEST_CASE_TEMPLATE("a non-unit direction scales t but not the hit point", T, RT_
     auto hit = intersect_sphere(off_centre_sphere<T>(), r, everything_ahead<T>());
     REQUIRE_MESSAGE(hit.has_value(), "the direction's length does not change which points the ray visits; got a miss");
     CHECK_MESSAGE(close(hit->t, T(1.5)),
-                  "with direction (0,0,-4) the hit point (1,2,-1) is reached at t = 1.5. If you got 6, your "
-                  "formula assumes d . d = 1: keep a = d . d in the quadratic. Got "
+                  "with direction (0,0,-4) the hit point (1,2,-1) is reached at t = 1.5. The direction is not "
+                  "unit length here: a = d . d = 16, not 1, and it must stay in the quadratic. Got "
                       << describe(hit));
     CHECK_MESSAGE(close(hit->point, vec3<T>(1, 2, -1)),
                   "whatever the direction's length, the ray meets the sphere at (1,2,-1); got " << describe(hit));
