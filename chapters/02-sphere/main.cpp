@@ -29,7 +29,7 @@ template <class T>
 image render_sphere(const program_options& opt) {
     auto frame = camera_frame<T>::look_at({0, 0, 0}, {0, 0, -1}, {0, 1, 0});
     pinhole_camera<T> camera(frame, T(60), opt.width, opt.height);
-    const sphere<T> ball{{0, 0, -3}, T(1)};
+    const sphere<T> ball{{0, 0, -5}, T(1.5)};
     return render(opt.width, opt.height, [&](int col, int row) {
         ray<T> r = camera.primary_ray(col, row);
         // t > 1: only what lies beyond the image plane is visible (chapter 01).
