@@ -118,6 +118,7 @@ function(rt_chapter_description id number folder title chapter_dir side exercise
   \"exercises\": ${exercises_json},
   \"depends\": ${depends_json},
 ${targets}  \"program\": \"$<TARGET_FILE:${id}>\",
+  \"student_library\": \"$<TARGET_FILE:${id}_student>\",
   \"reference\": \"${reference}\"
 }
 ")
