@@ -15,6 +15,8 @@
 #include "common/scene.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 namespace {
 
@@ -30,13 +32,14 @@ scene<T> overlapping_spheres() {
         {color(0.95f, 0.8f, 0.1f)},   // yellow
         {color(0.6f, 0.2f, 0.8f)},    // purple
     };
-    // Listed far to near on purpose: the loop must not simply keep the last hit.
+    // Listed neither near to far nor far to near, on purpose: a loop that
+    // keeps the first hit, or the last one, paints a far sphere over a near one.
     s.spheres = {
-        {{T(-0.6), T(0.3), T(-7)}, T(1.6), 2},
-        {{T(1.2), T(-0.2), T(-5.5)}, T(1.1), 1},
-        {{T(-1.0), T(-0.6), T(-4.2)}, T(0.8), 0},
-        {{T(0.3), T(0.5), T(-3.6)}, T(0.55), 3},
-        {{T(1.6), T(1.1), T(-4.5)}, T(0.5), 4},
+        {{T(1.2), T(-0.2), T(-5.5)}, T(1.1), 1},   // green, middle distance
+        {{T(0.3), T(0.5), T(-3.6)}, T(0.55), 3},   // yellow, nearest
+        {{T(-0.6), T(0.3), T(-7)}, T(1.6), 2},     // blue, farthest
+        {{T(-1.0), T(-0.6), T(-4.2)}, T(0.8), 0},  // red, near
+        {{T(1.6), T(1.1), T(-4.5)}, T(0.5), 4},    // purple, small, off to the side
     };
     return s;
 }
@@ -54,6 +57,11 @@ image render_scene(const program_options& opt) {
         // t > 1: only what lies beyond the image plane is visible (chapter 01).
         auto hit = ch03::closest_hit(world.object_count(), intersect, r, interval<T>::in_front_of_image_plane());
         if (!hit) return world.background;
+        // A wrong index would read past the list of spheres: say so instead of crashing.
+        if (!(hit->object >= 0 && hit->object < world.object_count()))
+            throw std::runtime_error("closest_hit returned a hit with object index " + std::to_string(hit->object) +
+                                     ": it must set hit.object to the index of the object hit (0 to " +
+                                     std::to_string(world.object_count() - 1) + ")");
         const material& m = world.materials[size_t(world.spheres[size_t(hit->object)].material)];
         // How squarely the surface faces the viewer: 1 head-on, 0 at the silhouette.
         const float facing = float(std::max(T(0), -dot(hit->normal, normalize(r.direction))));
