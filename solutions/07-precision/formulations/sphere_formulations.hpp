@@ -1,0 +1,245 @@
+// sphere_formulations.hpp — seven ways to intersect a ray with a sphere.
+//
+// All of them solve the same quadratic. With f = origin - center,
+//     |f + t d|^2 = r^2   <=>   a t^2 + 2 h t + c = 0,
+//     a = d.d,  h = f.d,  c = f.f - r^2,
+// and they differ only in the order of the floating-point operations. That
+// order decides whether the answer keeps its digits when the sphere is far
+// away (|f| >> r), huge and close (c is tiny next to f.f), or grazed (the
+// discriminant is tiny next to its terms).
+//
+// Every routine has the contract of the course's sphere exercises: the
+// smallest t with range.min < t < range.max, or std::nullopt; never NaN,
+// never infinity, never a t outside the range. The direction need not be
+// unit length; a zero direction is a miss.
+#pragma once
+
+#include "error_free.hpp"
+
+#include "common/interval.hpp"
+#include "common/ray.hpp"
+#include "common/shapes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <utility>
+
+namespace rt::formulations {
+
+// The nearer root inside the range. A NaN root fails contains() and is
+// dropped, so no formulation can hand a NaN on as a hit.
+template <class T>
+std::optional<T> nearest_in_range(T t0, T t1, const interval<T>& range) {
+    if (t1 < t0) std::swap(t0, t1);
+    if (range.contains(t0)) return t0;
+    if (range.contains(t1)) return t1;
+    return std::nullopt;
+}
+
+// 1. The textbook quadratic: b = 2 f.d, discriminant b^2 - 4ac.
+// Two traps: c = f.f - r^2 cancels when |f| >> r (a unit sphere 4096 units
+// away leaves c with no correct digit in float), and -b + sqrt(disc)
+// cancels for the far root.
+template <class T>
+std::optional<T> sphere_plain(const ray<T>& ray_, const sphere<T>& s, const interval<T>& range) {
+    vec3<T> f = ray_.origin - s.center;
+    T a = dot(ray_.direction, ray_.direction);
+    T b = T(2) * dot(f, ray_.direction);
+    T c = dot(f, f) - s.radius * s.radius;
+    T disc = b * b - T(4) * a * c;
+    if (!(disc >= 0)) return std::nullopt;
+    T root = std::sqrt(disc);
+    return nearest_in_range((-b - root) / (T(2) * a), (-b + root) / (T(2) * a), range);
+}
+
+// 2. The same with h = f.d (half of b): fewer operations, the same traps.
+template <class T>
+std::optional<T> sphere_half_b(const ray<T>& ray_, const sphere<T>& s, const interval<T>& range) {
+    vec3<T> f = ray_.origin - s.center;
+    T a = dot(ray_.direction, ray_.direction);
+    T h = dot(f, ray_.direction);
+    T c = dot(f, f) - s.radius * s.radius;
+    T disc = h * h - a * c;
+    if (!(disc >= 0)) return std::nullopt;
+    T root = std::sqrt(disc);
+    return nearest_in_range((-h - root) / a, (-h + root) / a, range);
+}
+
+// 3. The geometric form: with a unit direction u, the centre projects onto
+// the ray at tca = (C - o).u; the squared distance of the centre from the
+// ray is d2 = |C - o|^2 - tca^2 (Pythagoras), a hit needs d2 <= r^2, and
+// the chord is 2 sqrt(r^2 - d2). d2 is the difference of two huge numbers
+// when the sphere is far: the same cancellation as c, in a new place.
+template <class T>
+std::optional<T> sphere_geometric(const ray<T>& ray_, const sphere<T>& s, const interval<T>& range) {
+    T len = length(ray_.direction);
+    vec3<T> u = ray_.direction / len;
+    vec3<T> to_center = s.center - ray_.origin;
+    T tca = dot(to_center, u);
+    T d2 = dot(to_center, to_center) - tca * tca;
+    T r2 = s.radius * s.radius;
+    if (!(d2 <= r2)) return std::nullopt;
+    T thc = std::sqrt(r2 - d2);
+    return nearest_in_range((tca - thc) / len, (tca + thc) / len, range);
+}
+
+// 4. Hearn and Baker's discriminant (Ray Tracing Gems, chapter 7): the
+// discriminant equals a (r^2 - |l|^2) where l = f - (h/a) d is the vector
+// from the centre to the ray's closest point. |l| is small next to |f|,
+// so r^2 - l.l no longer subtracts two huge numbers. The roots still use
+// the textbook -h -/+ sqrt(disc).
+template <class T>
+std::optional<T> sphere_rtg_discriminant(const ray<T>& ray_, const sphere<T>& s, const interval<T>& range) {
+    const vec3<T>& d = ray_.direction;
+    vec3<T> f = ray_.origin - s.center;
+    T a = dot(d, d);
+    T h = dot(f, d);
+    vec3<T> l = f - (h / a) * d;
+    T disc = a * (s.radius * s.radius - dot(l, l));
+    if (!(disc >= 0)) return std::nullopt;
+    T root = std::sqrt(disc);
+    return nearest_in_range((-h - root) / a, (-h + root) / a, range);
+}
+
+// The stable root pair: q = -(h + sign(h) sqrt(disc)) adds two numbers of
+// the same sign, so nothing cancels, and the roots are c/q and q/a (their
+// product is c/a, Vieta). q = 0 only when h = 0 and disc = 0: a double root
+// at 0.
+template <class T>
+std::pair<T, T> stable_roots(T a, T h, T c, T disc) {
+    T q = -(h + std::copysign(std::sqrt(disc), h));
+    if (q == 0) return {T(0), T(0)};
+    return {c / q, q / a};
+}
+
+// 5. Ray Tracing Gems' combined form: Hearn and Baker's discriminant with
+// the stable root pair. What is left: f = o - C itself is rounded, and
+// c = f.f - r^2 still cancels, so the near root c/q is poor on a huge
+// sphere seen from close by, and l = f - (h/a) d cancels in a general
+// direction when the sphere is far.
+template <class T>
+std::optional<T> sphere_rtg_stable(const ray<T>& ray_, const sphere<T>& s, const interval<T>& range) {
+    const vec3<T>& d = ray_.direction;
+    vec3<T> f = ray_.origin - s.center;
+    T a = dot(d, d);
+    T h = dot(f, d);
+    vec3<T> l = f - (h / a) * d;
+    T r2 = s.radius * s.radius;
+    T disc = a * (r2 - dot(l, l));
+    if (!(disc >= 0)) return std::nullopt;
+    auto [t0, t1] = stable_roots(a, h, dot(f, f) - r2, disc);
+    return nearest_in_range(t0, t1, range);
+}
+
+namespace detail {
+template <class T>
+bool sphere_inputs_valid(const ray<T>& ray_, const sphere<T>& s) {
+    return is_finite(ray_.origin) && is_finite(ray_.direction) && is_finite(s.center) &&
+           std::isfinite(s.radius) && s.radius > 0;
+}
+
+// Powers of two move numbers without rounding them. The compensated form
+// brings |f| and r near 1 and |d| near 1 so that products of four inputs,
+// and their error terms, neither overflow nor sink into the subnormals.
+// Inside a comfortable range nothing is scaled (the common case is fast).
+template <class T>
+int scale_exponent(T largest) {
+    // Four inputs multiply to 2^(4e) and the error terms sit 2^-48 (float)
+    // below that: |e| <= 16 keeps both inside float's normal range, and
+    // keeps Dekker's split (error_free.hpp) from overflowing.
+    constexpr int comfortable = sizeof(T) == 4 ? 16 : 200;
+    int e = std::ilogb(largest);
+    return (e > comfortable || e < -comfortable) ? -e : 0;
+}
+}  // namespace detail
+
+// 6. The compensated form: every quantity that cancels is carried as a
+// double-word (error_free.hpp), so it keeps twice the digits of T:
+//   * f = o - C is exact (two_sum), so a ray origin 0.01 above a sphere of
+//     radius 10^6 does not lose its height before any arithmetic starts;
+//   * the perpendicular vector enters through the cross product f x d (by
+//     Lagrange's identity |f|^2 |d|^2 - (f.d)^2 = |f x d|^2, so the
+//     discriminant is a r^2 - |f x d|^2), each component a difference of
+//     exact FMA products;
+//   * c = f.f - r^2 and the discriminant are double-word sums.
+// The roots come from the stable pair, so each is within a few ULPs.
+template <class T>
+std::optional<T> sphere_compensated(const ray<T>& ray_, const sphere<T>& s, const interval<T>& range) {
+    using dw = double_word<T>;
+    if (!detail::sphere_inputs_valid(ray_, s)) return std::nullopt;
+    const vec3<T>& o = ray_.origin;
+    const vec3<T>& C = s.center;
+    dw f[3] = {two_sum(o.x, -C.x), two_sum(o.y, -C.y), two_sum(o.z, -C.z)};
+    T d[3] = {ray_.direction.x, ray_.direction.y, ray_.direction.z};
+    T r = s.radius;
+
+    T dmax = std::max({std::fabs(d[0]), std::fabs(d[1]), std::fabs(d[2])});
+    if (!(dmax > 0)) return std::nullopt;  // a zero direction meets nothing
+    T fmax = std::max({std::fabs(f[0].hi), std::fabs(f[1].hi), std::fabs(f[2].hi), r});
+    int ef = detail::scale_exponent(fmax), ed = detail::scale_exponent(dmax);
+    if (ef != 0) {
+        for (dw& x : f) x = scaled(x, ef);
+        r = std::ldexp(r, ef);
+    }
+    if (ed != 0)
+        for (T& x : d) x = std::ldexp(x, ed);
+
+    dw a = two_prod(d[0], d[0]) + two_prod(d[1], d[1]) + two_prod(d[2], d[2]);
+    dw h = f[0] * d[0] + f[1] * d[1] + f[2] * d[2];
+    dw g[3] = {f[1] * d[2] - f[2] * d[1], f[2] * d[0] - f[0] * d[2], f[0] * d[1] - f[1] * d[0]};
+    dw r2 = two_prod(r, r);
+    dw disc = a * r2 - (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    if (is_negative(disc)) return std::nullopt;
+    dw c = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) - r2;
+
+    auto [t0, t1] = stable_roots(a.value(), h.value(), c.value(), disc.value());
+    // Undo the scaling: |f + t d| = r became |2^ef f + t' 2^ed d| = 2^ef r,
+    // so t = t' 2^(ed - ef).
+    if (ed != ef) {
+        t0 = std::ldexp(t0, ed - ef);
+        t1 = std::ldexp(t1, ed - ef);
+    }
+    return nearest_in_range(t0, t1, range);
+}
+
+namespace detail {
+// Float inputs, double arithmetic: a product of two floats is exact in
+// double and a difference of two floats almost always is, so f, f x d and
+// c lose (almost) nothing; the roots are rounded to float once, at the end.
+inline std::optional<float> sphere_in_double(const ray<float>& ray_, const sphere<float>& s,
+                                             const interval<float>& range) {
+    if (!sphere_inputs_valid(ray_, s)) return std::nullopt;
+    vec3<double> d = convert<double>(ray_.direction);
+    vec3<double> f = convert<double>(ray_.origin) - convert<double>(s.center);
+    double r = s.radius;
+    double a = dot(d, d);
+    if (!(a > 0)) return std::nullopt;
+    double h = dot(f, d);
+    vec3<double> g = cross(f, d);
+    double disc = a * (r * r) - dot(g, g);
+    if (!(disc >= 0)) return std::nullopt;
+    auto [t0, t1] = stable_roots(a, h, dot(f, f) - r * r, disc);
+    // Rounding to float: beyond the float range the root becomes infinite
+    // (and fails the range test) instead of an undefined conversion.
+    auto to_float = [](double t) {
+        constexpr double top = std::numeric_limits<float>::max();
+        return std::fabs(t) <= top ? static_cast<float>(t) : std::copysign(infinity<float>, static_cast<float>(t));
+    };
+    return nearest_in_range(to_float(t0), to_float(t1), range);
+}
+}  // namespace detail
+
+// 7. The mixed-precision form: the arithmetic is wider than the data. For
+// float data that is double arithmetic (detail::sphere_in_double); for
+// double data it is double-double, which is exactly what the compensated
+// form computes, so the double case calls it.
+template <class T>
+std::optional<T> sphere_mixed(const ray<T>& ray_, const sphere<T>& s, const interval<T>& range) {
+    if constexpr (sizeof(T) == sizeof(float))
+        return detail::sphere_in_double(ray_, s, range);
+    else
+        return sphere_compensated(ray_, s, range);
+}
+
+}  // namespace rt::formulations

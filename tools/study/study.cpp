@@ -1,0 +1,205 @@
+// study — error against run time for every formulation, in float and double.
+//
+//   study                 the default run (about a minute): tables on stdout,
+//                         out/study/study.csv, far_groups.csv, study.svg, study.md
+//   study --long          more cases and more timing runs: steadier figures
+//   study --quick         a few seconds (the ctest smoke run)
+//
+// For every case family it prints one table: formulation x precision ->
+// nanoseconds per test (median over runs [min, max], data in cache, hit
+// ratio), error in ULPs and relative (median, 99th percentile, max) against
+// MPFR references from the same inputs, and counts of false hits, false
+// misses and wrong roots. Chapter 07's own intersect_sphere_robust (the
+// student's code, or the solution in a solution build) is measured in the
+// same tables when this program is linked with it.
+#include "build_info.hpp"
+#include "report.hpp"
+
+#include "common/timing.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <ctime>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#ifdef RT_STUDY_HAS_CH07
+#include "robust_sphere.hpp"
+#endif
+
+namespace {
+
+using namespace rt;
+using namespace rt::study;
+namespace fm = rt::formulations;
+
+struct settings {
+    case_options cases;
+    timing_options timing;
+    bool student = true;
+};
+
+std::string machine_name() {
+    std::ifstream cpu("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(cpu, line))
+        if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+    return "unknown CPU";
+}
+
+#ifdef RT_STUDY_HAS_CH07
+template <class T>
+std::optional<T> chapter07(const ray<T>& r, const sphere<T>& s, const interval<T>& range) {
+    auto h = rt::ch07::intersect_sphere_robust(s, r, range);
+    return h ? std::optional<T>(h->t) : std::nullopt;
+}
+#endif
+
+// Measures one routine on one family: answers, then time.
+template <class T, class Q, class Fn, class Batch>
+outcome measure_one(const family<Q>& fam, const std::vector<reference_answer>& refs, const std::string& name, Fn fn,
+                    Batch batch, const settings& s) {
+    outcome o;
+    try {
+        o = evaluate<T>(fam, refs, fn);
+        o.ns = time_batch(fam, batch, s.timing);
+    } catch (const std::exception& e) {
+        o = outcome{};
+        o.family = fam.name;
+        o.precision = sizeof(T) == 4 ? "float" : "double";
+        o.failed = true;
+        o.failure = e.what();
+    }
+    o.formulation = name;
+    return o;
+}
+
+template <class T, class Q, class Table>
+void measure_families(const std::vector<family<Q>>& families, const Table& table, const settings& s,
+                      std::vector<outcome>& rows, std::vector<std::string>& far_groups) {
+    for (const family<Q>& fam : families) {
+        std::vector<reference_answer> refs = references(fam);
+        for (const auto& entry : table)
+            rows.push_back(measure_one<T>(fam, refs, entry.name, entry.template fn<T>(), entry.template batch<T>(), s));
+        if constexpr (std::is_same_v<Q, sphere_query<T>>) {
+#ifdef RT_STUDY_HAS_CH07
+            if (s.student)
+                rows.push_back(measure_one<T>(fam, refs, "chapter 07", &chapter07<T>,
+                                              &fm::run_batch<sphere_query<T>, &chapter07<T>>, s));
+#endif
+            if (fam.name == "far") far_groups = fam.group_names;
+        }
+    }
+}
+
+template <class T>
+void measure_precision(const settings& s, std::vector<outcome>& rows, std::vector<std::string>& far_groups,
+                       std::vector<std::pair<std::string, std::string>>& families) {
+    auto spheres = sphere_families<T>(s.cases);
+    auto planes = plane_families<T>(s.cases);
+    auto triangles = triangle_families<T>(s.cases);
+    auto note = [&families](const auto& list) {
+        for (const auto& f : list) {
+            bool known = false;
+            for (const auto& k : families) known |= k.first == f.name;
+            if (!known) families.emplace_back(f.name, f.description);
+        }
+    };
+    note(spheres), note(planes), note(triangles);
+    measure_families<T>(spheres, fm::sphere_formulations(), s, rows, far_groups);
+    measure_families<T>(planes, fm::plane_formulations(), s, rows, far_groups);
+    measure_families<T>(triangles, fm::triangle_formulations(), s, rows, far_groups);
+}
+
+// Rows of one family next to each other: formulation, then float before double.
+std::vector<outcome> ordered(const std::vector<outcome>& rows) {
+    std::vector<outcome> out;
+    std::vector<std::string> names;
+    for (const outcome& o : rows)
+        if (std::find(names.begin(), names.end(), o.formulation) == names.end()) names.push_back(o.formulation);
+    for (const std::string& n : names)
+        for (const char* p : {"float", "double"})
+            for (const outcome& o : rows)
+                if (o.formulation == n && o.precision == p) out.push_back(o);
+    return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Formulation study: error against run time of ray-sphere, ray-plane and ray-triangle tests"};
+    settings s;
+    bool quick = false, longer = false;
+    std::string out_dir = "out/study";
+    app.add_flag("--quick", quick, "a few seconds: few cases, few timing runs (the smoke test)");
+    app.add_flag("--long", longer, "more cases and timing runs for steadier figures (several minutes)");
+    app.add_option("--out", out_dir, "folder for study.csv, far_groups.csv, study.svg and study.md");
+    app.add_option("--seed", s.cases.seed, "seed of the random case families");
+    app.add_flag("!--no-student", s.student, "leave out chapter 07's intersect_sphere_robust");
+    CLI11_PARSE(app, argc, argv);
+    if (quick && longer) {
+        std::cerr << "study: choose --quick or --long, not both\n";
+        return 2;
+    }
+    if (quick) s.cases.per_group = 32, s.timing = {3, 0.0002, 512};
+    if (longer) s.cases.per_group = 4096, s.timing = {21, 0.005, 4096};
+    else if (!quick) s.cases.per_group = 2048, s.timing = {9, 0.003, 4096};
+
+    std::ostringstream machine;
+    std::time_t now = std::time(nullptr);
+    char date[32];
+    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+    machine << "Machine: " << machine_name() << " (" << std::thread::hardware_concurrency()
+            << " logical CPUs); compiler: " << RT_STUDY_COMPILER << "; flags: " << RT_STUDY_FLAGS << "; " << date;
+    std::ostringstream text;
+    text << "# Formulation study\n\n" << machine.str() << "\n\n"
+         << "Run: " << (quick ? "--quick" : longer ? "--long" : "default") << ", " << s.cases.per_group
+         << " random queries per group, seed " << s.cases.seed << "; time: median of " << s.timing.runs
+         << " runs over up to " << s.timing.max_queries
+         << " queries held in cache, each run at least " << s.timing.seconds_per_run * 1e3
+         << " ms, routine inlined into the timing loop; \"hits %\" is the routine's own hit ratio on the timed data's "
+            "family. ULPs and relative error are over hits on the reference's root.\n";
+
+    rt::stopwatch clock;
+    std::vector<outcome> rows;
+    std::vector<std::string> far_groups;
+    std::vector<std::pair<std::string, std::string>> families;
+    measure_precision<float>(s, rows, far_groups, families);
+    measure_precision<double>(s, rows, far_groups, families);
+    rows = ordered(rows);
+
+    for (const auto& [name, description] : families) {
+        print_family_table(text, name, description, rows);
+        if (name == "far") {
+            std::vector<outcome> far_rows;
+            for (const outcome& o : rows)
+                if (o.family == "far") far_rows.push_back(o);
+            print_group_table(text, far_groups, static_cast<std::size_t>(s.cases.per_group), far_rows);
+        }
+    }
+    text << "\nTotal run time " << clock.seconds() << " s.\n";
+    std::cout << text.str();
+
+    try {
+        std::filesystem::create_directories(out_dir);
+        std::vector<std::string> names;
+        for (const auto& f : families) names.push_back(f.first);
+        std::vector<outcome> far_rows;
+        for (const outcome& o : rows)
+            if (o.family == "far") far_rows.push_back(o);
+        write_csv(out_dir + "/study.csv", rows);
+        write_group_csv(out_dir + "/far_groups.csv", far_groups, far_rows);
+        write_svg(out_dir + "/study.svg", names, rows, machine.str());
+        std::ofstream md(out_dir + "/study.md");
+        md << text.str();
+        std::cout << "\nWrote " << out_dir << "/study.csv, far_groups.csv, study.svg, study.md\n";
+    } catch (const std::exception& e) {
+        std::cerr << "study: " << e.what() << "\n";
+        return 1;
+    }
+    return 0;
+}
