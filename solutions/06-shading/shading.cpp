@@ -10,18 +10,27 @@ namespace rt::ch06 {
 
 namespace {
 
-// |v| > 0 and finite, written so that NaN fails it.
+// Finite and not zero, written so that NaN fails it.
 template <class T>
 bool usable_direction(const vec3<T>& v) {
-    return is_finite(v) && dot(v, v) > T(0);
+    return is_finite(v) && (v.x != T(0) || v.y != T(0) || v.z != T(0));
+}
+
+// v / |v| for a usable direction. Dividing by the largest component first
+// keeps dot(v, v) from overflowing (a float vector of length 1e20) or
+// underflowing to zero (length 1e-20) on the way.
+template <class T>
+vec3<T> unit(const vec3<T>& v) {
+    const vec3<T> scaled = v / std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+    return scaled / length(scaled);
 }
 
 // Cosine of the angle between a and b, or NaN when either is unusable.
-// Dividing by both lengths is what makes the answer depend on the angle only.
+// Making both unit length is what makes the answer depend on the angle only.
 template <class T>
 T cosine(const vec3<T>& a, const vec3<T>& b) {
     if (!usable_direction(a) || !usable_direction(b)) return std::numeric_limits<T>::quiet_NaN();
-    return dot(a, b) / (length(a) * length(b));
+    return dot(unit(a), unit(b));
 }
 
 }  // namespace
@@ -40,7 +49,7 @@ T blinn_phong(const vec3<T>& normal, const vec3<T>& to_light, const vec3<T>& to_
     if (!usable_direction(to_viewer)) return T(0);
     // The half vector bisects the angle between the unit light and viewer
     // directions; it lines up with the normal exactly in the mirror setup.
-    const vec3<T> half = to_light / length(to_light) + to_viewer / length(to_viewer);
+    const vec3<T> half = unit(to_light) + unit(to_viewer);
     const T c = cosine(normal, half);  // NaN when half = 0 (light and viewer opposite)
     if (!(c > T(0))) return T(0);
     return std::pow(std::min(c, T(1)), shininess);
@@ -56,7 +65,7 @@ vec3<T> shadow_ray_origin(const vec3<T>& point, const vec3<T>& normal, const vec
     const T magnitude = std::max({T(1), std::fabs(point.x), std::fabs(point.y), std::fabs(point.z)});
     const T offset = shadow_offset_epsilons<T> * std::numeric_limits<T>::epsilon() * magnitude;
     const T side = dot(normal, to_light) >= T(0) ? T(1) : T(-1);
-    return point + (side * offset / length(normal)) * normal;
+    return point + (side * offset) * unit(normal);
 }
 
 template <class T>
