@@ -12,11 +12,11 @@
 
 namespace rt {
 
-// How a surface responds to light (chapter 06): a Blinn-Phong material.
+// How a surface responds to light: the parameters chapter 06 shades with.
 struct material {
-    color diffuse{0.8f, 0.8f, 0.8f};   // Lambertian reflectance, per channel
-    color specular{0.0f, 0.0f, 0.0f};  // Blinn-Phong highlight colour
-    float shininess = 32.0f;           // Blinn-Phong exponent
+    color diffuse{0.8f, 0.8f, 0.8f};   // diffuse reflectance, per channel
+    color specular{0.0f, 0.0f, 0.0f};  // highlight colour
+    float shininess = 32.0f;           // highlight exponent: larger is a smaller, sharper highlight
     bool checker = false;              // planes: alternate diffuse and checker_color in unit squares
     color checker_color{0.2f, 0.2f, 0.2f};
 };
