@@ -1,4 +1,7 @@
 // scene_loop.hpp — chapter 03's exercise: the closest hit among many objects.
+//
+// This header is the contract; your code goes in scene_loop.cpp, and the
+// reference solution implements exactly the same declaration.
 #pragma once
 
 #include "common/hit_record.hpp"
@@ -27,8 +30,16 @@ using object_intersector = std::function<std::optional<hit_record<T>>(int i, con
 //   the hit with the smallest t over all objects, with its `object` field
 //   set to the index of the object hit, or std::nullopt when no object is hit
 //   inside the range. The answer does not depend on the order of the objects.
-//   Each object is tested once, with the upper end of the range shrunk to the
-//   closest t found so far.
+//   Each object is tested once, in the order 0, 1, ..., with the caller's
+//   range.min and with range.max shrunk to the closest t found so far.
+//
+//   * No objects (object_count <= 0): a miss, and intersect is never called.
+//   * Two objects hit at exactly the same t: the one tested first is kept
+//     (the range is open, so the second is not hit inside (min, t)).
+//   * The hit record is the one object's intersect returned, unchanged
+//     except for its `object` field.
+//
+// T is float or double: the same code is compiled for both.
 template <class T>
 std::optional<hit_record<T>> closest_hit(int object_count, const object_intersector<T>& intersect, const ray<T>& r,
                                          interval<T> range);
