@@ -107,6 +107,7 @@ color shade(which_scene sc, const ray<T>& r, const std::optional<hit_record<T>>&
         // A checkerboard of 0.25-unit squares: a wrong t moves the hit point
         // along the ray, and the squares' edges show it as fraying.
         const double x = double(hit->point.x), z = double(hit->point.z);
+        if (!(std::fabs(x) < 1e9 && std::fabs(z) < 1e9)) return color(1.0f, 0.0f, 1.0f);  // no sane point: magenta
         const bool dark = (long(std::floor(x * 4)) + long(std::floor(z * 4))) % 2 != 0;
         const float light = 0.35f + 0.65f * std::max(0.0f, n.y);
         return (dark ? color(0.25f, 0.25f, 0.3f) : color(0.9f, 0.85f, 0.7f)) * light;
