@@ -252,7 +252,9 @@ double off_plane_ulps(const plane<T>& p, const vec3<T>& x) {
     mpfr_sqrt(len.get(), len.get(), MPFR_RNDN);
     mpfr_div(num.get(), num.get(), len.get(), MPFR_RNDN);
     mpfr_abs(num.get(), num.get(), MPFR_RNDN);
-    T largest = std::max({std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)});
+    // The scale of the question: the larger of the point and the plane's
+    // anchor point (a point cannot be placed closer than their ULPs allow).
+    T largest = std::max({std::fabs(x.x), std::fabs(x.y), std::fabs(x.z), std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
     if (largest == 0) largest = std::numeric_limits<T>::min();
     // One ULP of the largest coordinate.
     long double ulp = std::ldexp(1.0L, std::ilogb(largest) - (std::numeric_limits<T>::digits - 1));

@@ -37,8 +37,9 @@ reference_answer plane_reference(const ray<T>& r, const plane<T>& p, const inter
 template <class T>
 reference_answer triangle_reference(const ray<T>& r, const triangle<T>& tri, const interval<T>& range);
 
-// How far the point x lies off the plane, in ULPs of x's largest coordinate
-// (0.5 is the best a stored point can do in general).
+// How far the point x lies off the plane, in ULPs of the largest coordinate
+// of x and of the plane's point (a stored point can be off by up to about
+// 0.9 of those: each coordinate is rounded by half an ULP).
 template <class T>
 double off_plane_ulps(const plane<T>& p, const vec3<T>& x);
 

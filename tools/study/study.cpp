@@ -139,6 +139,8 @@ int main(int argc, char** argv) {
     app.add_flag("--long", longer, "more cases and timing runs for steadier figures (several minutes)");
     app.add_option("--out", out_dir, "folder for study.csv, far_groups.csv, study.svg and study.md");
     app.add_option("--seed", s.cases.seed, "seed of the random case families");
+    int per_group = 0;
+    app.add_option("--per-group", per_group, "random queries per group (overrides the run's default)")->check(CLI::Range(1, 1 << 20));
     app.add_flag("!--no-student", s.student, "leave out chapter 07's intersect_sphere_robust");
     CLI11_PARSE(app, argc, argv);
     if (quick && longer) {
@@ -148,6 +150,7 @@ int main(int argc, char** argv) {
     if (quick) s.cases.per_group = 32, s.timing = {3, 0.0002, 512};
     if (longer) s.cases.per_group = 4096, s.timing = {21, 0.005, 4096};
     else if (!quick) s.cases.per_group = 2048, s.timing = {9, 0.003, 4096};
+    if (per_group > 0) s.cases.per_group = per_group;
 
     std::ostringstream machine;
     std::time_t now = std::time(nullptr);

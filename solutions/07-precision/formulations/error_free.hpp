@@ -16,7 +16,9 @@
 // (a - (s - b)) to zero and every error term would vanish.
 #pragma once
 
+#include <array>
 #include <cmath>
+#include <cstddef>
 
 namespace rt::formulations {
 
@@ -109,6 +111,25 @@ double_word<T> operator*(double_word<T> x, T y) {
     double_word<T> p = two_prod(x.hi, y);
     p.lo += x.lo * y;
     return fast_two_sum(p.hi, p.lo);
+}
+
+// The sum of N numbers as if it were computed with three times the
+// precision of T and rounded once (Ogita, Rump and Oishi's SumK, K = 3):
+// two sweeps of two_sum push the rounding errors down the array without
+// losing any of them, then a plain sum adds what is left. Used where the
+// terms cancel to something 10^8 times smaller than themselves.
+template <class T, std::size_t N>
+T sum_k3(std::array<T, N> p) {
+    for (int sweep = 0; sweep < 2; ++sweep) {
+        for (std::size_t i = 1; i < N; ++i) {
+            double_word<T> s = two_sum(p[i], p[i - 1]);
+            p[i] = s.hi;
+            p[i - 1] = s.lo;
+        }
+    }
+    T sum = 0;
+    for (std::size_t i = 0; i + 1 < N; ++i) sum += p[i];
+    return sum + p[N - 1];
 }
 
 // Scales by 2^k: exact unless the result leaves the range of T.

@@ -154,6 +154,27 @@ int scale_exponent(T largest) {
 }
 }  // namespace detail
 
+namespace detail {
+// c = f.f - r^2 from its exact pieces: (hi + lo)^2 = hi^2 + 2 hi lo + lo^2,
+// each product split into value and error, then summed in triple
+// precision. For a ray origin a fraction of an ULP off the surface, c is
+// 10^9 times smaller than f.f, and a double-word sum would leave it with
+// tens of ULPs of error; this leaves it with about one.
+template <class T>
+T exact_c(const double_word<T> (&f)[3], double_word<T> r2) {
+    std::array<T, 17> terms{};
+    std::size_t n = 0;
+    for (const double_word<T>& x : f) {
+        double_word<T> square = two_prod(x.hi, x.hi), cross = two_prod(x.hi, T(2) * x.lo);
+        terms[n++] = square.hi, terms[n++] = square.lo;
+        terms[n++] = cross.hi, terms[n++] = cross.lo;
+        terms[n++] = x.lo * x.lo;  // about u^2 f.f: its own rounding does not matter
+    }
+    terms[n++] = -r2.hi, terms[n++] = -r2.lo;
+    return sum_k3(terms);
+}
+}  // namespace detail
+
 // 6. The compensated form: every quantity that cancels is carried as a
 // double-word (error_free.hpp), so it keeps twice the digits of T:
 //   * f = o - C is exact (two_sum), so a ray origin 0.01 above a sphere of
@@ -162,7 +183,8 @@ int scale_exponent(T largest) {
 //     Lagrange's identity |f|^2 |d|^2 - (f.d)^2 = |f x d|^2, so the
 //     discriminant is a r^2 - |f x d|^2), each component a difference of
 //     exact FMA products;
-//   * c = f.f - r^2 and the discriminant are double-word sums.
+//   * the discriminant is a double-word sum, and c = f.f - r^2 is summed
+//     from its exact pieces in triple precision (detail::exact_c).
 // The roots come from the stable pair, so each is within a few ULPs.
 template <class T>
 std::optional<T> sphere_compensated(const ray<T>& ray_, const sphere<T>& s, const interval<T>& range) {
@@ -191,9 +213,9 @@ std::optional<T> sphere_compensated(const ray<T>& ray_, const sphere<T>& s, cons
     dw r2 = two_prod(r, r);
     dw disc = a * r2 - (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
     if (is_negative(disc)) return std::nullopt;
-    dw c = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) - r2;
+    T c = detail::exact_c(f, r2);
 
-    auto [t0, t1] = stable_roots(a.value(), h.value(), c.value(), disc.value());
+    auto [t0, t1] = stable_roots(a.value(), h.value(), c, disc.value());
     // Undo the scaling: |f + t d| = r became |2^ef f + t' 2^ed d| = 2^ef r,
     // so t = t' 2^(ed - ef).
     if (ed != ef) {
