@@ -210,6 +210,7 @@ error_tally measure(which_scene sc, formula fm, int width, int height) {
 template <class T>
 std::string error_report(const program_options& opt) {
     const int w = opt.width / 2, h = opt.height / 2;  // one panel's size
+    if (w == 0 || h == 0) return "the image is too small for 2 x 2 panels: nothing to measure";
     std::string out = std::string("against the robust test in long double, per ") + std::to_string(w) + "x" +
                       std::to_string(h) + " panel:";
     const char* scene_names[] = {"far spheres", "huge ground"};
