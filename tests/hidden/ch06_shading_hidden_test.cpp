@@ -261,7 +261,7 @@ TEST_CASE_TEMPLATE("hidden: blinn phong stays in range and never NaN", T, RT_SCA
     const T d = ch06::blinn_phong(n, vec3<T>(1, 1, 0), vec3<T>(-1, 1, 0), T(0));      // shininess 0
     const bool ok = a == T(0) && b == T(0) && c == T(0) && agrees<T>(d, 1);
     CHECK_MESSAGE(ok, "the highlight is always in [0, 1]: no NaN when the half vector or an input is zero, "
-                      "and a shininess of 0 means a flat highlight of 1");
+                      "and a shininess of 0 is a valid (completely dull) material");
 }
 
 TEST_CASE_TEMPLATE("hidden: blinn phong rejects a negative shininess", T, RT_SCALARS) {

@@ -140,7 +140,7 @@ TEST_CASE_TEMPLATE("the highlight peaks in the mirror direction", T, RT_SCALARS)
                       << mirror << ", got " << off_mirror);
     // Viewer next to the light: h = l, 45 degrees from n: cos(45)^32 = 2^-16.
     const T beside_light = ch06::blinn_phong(n, to_light, vec3<T>(1, 1, 0), T(32));
-    CHECK_MESSAGE(close(beside_light, std::pow(T(0.5), T(16))),
+    CHECK_MESSAGE(close(beside_light, std::pow(T(0.5), T(16)), T(0)),  // scale 0: a relative comparison
                   "with the viewer beside the light, h = l is 45 degrees from the normal: "
                   "cos(45 deg)^32 = 2^-16 = 1.53e-5. Use the half vector of the UNIT light and viewer "
                   "directions. Got "
