@@ -58,8 +58,10 @@ color checker(const material& m, const vec3<T>& point, const vec3<T>& normal) {
     T u = point.x, v = point.z;                  // ground-like plane: normal mostly along y
     if (n.x >= n.y && n.x >= n.z) u = point.z, v = point.y;
     else if (n.z >= n.x && n.z >= n.y) u = point.x, v = point.y;
-    const long squares = long(std::floor(u)) + long(std::floor(v));
-    return squares % 2 == 0 ? m.diffuse : m.checker_color;
+    // fmod, not a cast to an integer: far out near the horizon the coordinates
+    // can exceed any integer type, and an out-of-range cast is undefined.
+    const T squares = std::fmod(std::floor(u) + std::floor(v), T(2));  // 0 or +-1
+    return squares == T(0) ? m.diffuse : m.checker_color;
 }
 
 template <class T>

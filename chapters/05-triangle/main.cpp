@@ -97,8 +97,8 @@ scene<T> mesh_among_spheres() {
 // Unit squares on the ground (x and z; see chapter 04's program).
 template <class T>
 color checker(const material& m, const vec3<T>& point) {
-    const long squares = long(std::floor(point.x)) + long(std::floor(point.z));
-    return squares % 2 == 0 ? m.diffuse : m.checker_color;
+    const T squares = std::fmod(std::floor(point.x) + std::floor(point.z), T(2));  // 0 or +-1 (see chapter 04)
+    return squares == T(0) ? m.diffuse : m.checker_color;
 }
 
 template <class T>
