@@ -1,0 +1,478 @@
+// fast_path.cpp — the specialised renderer.
+//
+// Layout. Objects are stored as structure-of-arrays: all sphere centres'
+// x in one array, all y in the next, and so on. Rays go in packets of
+// eight neighbouring pixels of one row, also as arrays. The hot loop takes
+// one object and tests it against the eight rays: the same arithmetic on
+// eight independent lanes, which the compiler turns into vector
+// instructions (AVX2: one instruction for eight floats or four doubles).
+// Each lane keeps its own closest t and object with a select instead of a
+// branch, so there is nothing to stop the vectoriser.
+//
+// Specialisation. Every loop the scene does not need is removed at compile
+// time: the kernels are templates on the scalar type, the sphere
+// formulation (none, plain, robust), whether there are planes, triangles
+// and lights, and whether all rays of a packet share their origin (a
+// pinhole camera's primary rays do, so terms that depend only on the origin
+// and the object move out of the lane loop). dispatch() picks the one
+// instantiation the plan asks for.
+//
+// Misses. Each lane function returns the hit's t, or +infinity for a miss;
+// "t < closest so far" is false for infinity and for NaN, so neither a miss
+// nor a NaN can ever be taken as a hit.
+//
+// Conditions are combined with & rather than &&: && may skip the second
+// comparison, which is a branch, and a loop with branches is not
+// vectorised. With & every comparison is computed in every lane and the
+// answer is one select.
+#include "fast_path.hpp"
+
+#include "look.hpp"
+
+#include "checker.hpp"   // chapter 06's given checker pattern
+#include "shading.hpp"   // chapter 06's shade(), for lit scenes
+
+#include "common/render.hpp"
+
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <functional>
+#include <limits>
+#include <mutex>
+#include <thread>
+#include <type_traits>
+
+namespace rt::render_tool {
+
+namespace {
+
+constexpr int W = packet_width;
+
+enum class sphere_mode { none, plain, robust };
+
+// Object numbers in the same width as T, so a select on (t, object) pairs
+// stays within one kind of vector lane.
+template <class T>
+using index_t = std::conditional_t<sizeof(T) == 4, std::int32_t, std::int64_t>;
+
+template <class T>
+struct soa_scene {
+    size_t sphere_count = 0, plane_count = 0, triangle_count = 0;
+    // Each array is padded to a multiple of W with NaN entries, which never
+    // hit, so the shadow-ray loop can run over whole groups of W objects.
+    std::vector<T> cx, cy, cz, radius, radius2;
+    std::vector<T> px, py, pz, nx, ny, nz;  // planes: a point and the unit normal
+    std::vector<T> ax, ay, az, e1x, e1y, e1z, e2x, e2y, e2z;  // triangles: corner a, edges b-a, c-a
+
+    explicit soa_scene(const scene<double>& s) {
+        sphere_count = s.spheres.size();
+        plane_count = s.planes.size();
+        triangle_count = s.triangles.size();
+        for (const auto& x : s.spheres) {
+            cx.push_back(T(x.center.x)), cy.push_back(T(x.center.y)), cz.push_back(T(x.center.z));
+            radius.push_back(T(x.radius)), radius2.push_back(T(x.radius) * T(x.radius));
+        }
+        for (const auto& x : s.planes) {
+            vec3d n = normalize(x.normal);
+            px.push_back(T(x.point.x)), py.push_back(T(x.point.y)), pz.push_back(T(x.point.z));
+            nx.push_back(T(n.x)), ny.push_back(T(n.y)), nz.push_back(T(n.z));
+        }
+        for (const auto& x : s.triangles) {
+            // Edges from the corners rounded to T, as the general path sees them.
+            vec3<T> a = convert<T>(x.a), e1 = convert<T>(x.b) - a, e2 = convert<T>(x.c) - a;
+            ax.push_back(a.x), ay.push_back(a.y), az.push_back(a.z);
+            e1x.push_back(e1.x), e1y.push_back(e1.y), e1z.push_back(e1.z);
+            e2x.push_back(e2.x), e2y.push_back(e2.y), e2z.push_back(e2.z);
+        }
+        for (auto* v : {&cx, &cy, &cz, &radius, &radius2, &px, &py, &pz, &nx, &ny, &nz, &ax, &ay, &az, &e1x, &e1y,
+                        &e1z, &e2x, &e2y, &e2z})
+            while (v->size() % W) v->push_back(std::numeric_limits<T>::quiet_NaN());
+    }
+};
+
+template <class T>
+struct packet {
+    alignas(64) T ox[W], oy[W], oz[W], dx[W], dy[W], dz[W];
+};
+
+// c = |f|^2 - r^2 with the rounding error of each square added back (fma
+// gives a product's exact low half), so a large sphere seen from near its
+// surface, where |f|^2 and r^2 agree in most digits, keeps an accurate c.
+template <class T>
+inline T compensated_c(T fx, T fy, T fz, T r) {
+    const T xx = fx * fx, yy = fy * fy, zz = fz * fz, rr = r * r;
+    const T low = (std::fma(fx, fx, -xx) + std::fma(fy, fy, -yy) + std::fma(fz, fz, -zz)) - std::fma(r, r, -rr);
+    return ((xx - rr) + (yy + zz)) + low;
+}
+
+// One sphere against one ray, with f = origin - centre, c = |f|^2 - r^2,
+// a = |d|^2. Returns the nearest t > tmin, or infinity.
+template <class T, sphere_mode SM>
+inline T sphere_t(T fx, T fy, T fz, T c, T rr, T dx, T dy, T dz, T a, T inv_a, T tmin) {
+    const T half_b = fx * dx + fy * dy + fz * dz;
+    T disc, near, far;
+    if constexpr (SM == sphere_mode::plain) {
+        // The plain quadratic: cheapest, loses digits as (distance / radius)^2.
+        disc = half_b * half_b - a * c;
+        const T root = std::sqrt(disc);  // NaN when disc < 0: that lane's answer is dropped below
+        near = (-half_b - root) * inv_a;
+        far = (-half_b + root) * inv_a;
+    } else {
+        // The perpendicular foot g = f - (half_b / a) d is formed before
+        // squaring, then the stable root pair c / q and q / a.
+        const T m = half_b * inv_a;
+        const T gx = fx - m * dx, gy = fy - m * dy, gz = fz - m * dz;
+        disc = a * (rr - (gx * gx + gy * gy + gz * gz));
+        const T root = std::sqrt(disc);
+        const T q = -(half_b + std::copysign(root, half_b));
+        const T r1 = c / q, r2 = q * inv_a;
+        near = r1 < r2 ? r1 : r2;
+        far = r1 < r2 ? r2 : r1;
+    }
+    const T t = near > tmin ? near : far;
+    return (disc >= T(0)) & (t > tmin) ? t : infinity<T>;
+}
+
+// One plane against one ray; num = n . (point - origin).
+template <class T>
+inline T plane_t(T num, T nx, T ny, T nz, T dx, T dy, T dz, T tmin) {
+    const T t = num / (nx * dx + ny * dy + nz * dz);  // parallel: +-inf or NaN, both rejected
+    return t > tmin ? t : infinity<T>;
+}
+
+// One triangle against one ray (Moeller-Trumbore). s = origin - a and
+// q = s x e1 depend only on the origin and the triangle.
+template <class T>
+inline T triangle_t(T sx, T sy, T sz, T qx, T qy, T qz, T e1x, T e1y, T e1z, T e2x, T e2y, T e2z, T dx, T dy, T dz,
+                    T tmin) {
+    const T px = dy * e2z - dz * e2y, py = dz * e2x - dx * e2z, pz = dx * e2y - dy * e2x;
+    const T inv_det = T(1) / (e1x * px + e1y * py + e1z * pz);
+    const T u = (sx * px + sy * py + sz * pz) * inv_det;
+    const T v = (dx * qx + dy * qy + dz * qz) * inv_det;
+    const T t = (e2x * qx + e2y * qy + e2z * qz) * inv_det;
+    // Edges count as inside; NaN (a degenerate triangle) fails every test.
+    return (u >= T(0)) & (v >= T(0)) & (u + v <= T(1)) & (t > tmin) ? t : infinity<T>;
+}
+
+// The closest hit of each ray of a packet: tbest[k] and object[k] (-1 for
+// a miss). Objects are numbered spheres, then planes, then triangles.
+template <class T, sphere_mode SM, bool Planes, bool Tris, bool CommonOrigin>
+void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, index_t<T>* object) {
+    using I = index_t<T>;
+    // Local arrays, copied out at the end: the compiler may then keep them
+    // in registers for the whole object loop.
+    alignas(64) T a[W], inv_a[W], best_t[W];
+    alignas(64) I best[W];
+    for (int k = 0; k < W; ++k) {
+        a[k] = p.dx[k] * p.dx[k] + p.dy[k] * p.dy[k] + p.dz[k] * p.dz[k];
+        inv_a[k] = T(1) / a[k];
+        best_t[k] = infinity<T>;
+        best[k] = -1;
+    }
+    auto keep = [&](int k, T t, I id) {
+        const bool closer = t < best_t[k];
+        best_t[k] = closer ? t : best_t[k];
+        best[k] = closer ? id : best[k];
+    };
+    if constexpr (SM != sphere_mode::none) {
+        for (size_t i = 0; i < s.sphere_count; ++i) {
+            const T cx = s.cx[i], cy = s.cy[i], cz = s.cz[i], r = s.radius[i], rr = s.radius2[i];
+            if constexpr (CommonOrigin) {
+                const T fx = p.ox[0] - cx, fy = p.oy[0] - cy, fz = p.oz[0] - cz;
+                const T c = SM == sphere_mode::plain ? fx * fx + fy * fy + fz * fz - rr : compensated_c(fx, fy, fz, r);
+                for (int k = 0; k < W; ++k)
+                    keep(k, sphere_t<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], a[k], inv_a[k], tmin), I(i));
+            } else {
+                for (int k = 0; k < W; ++k) {
+                    const T fx = p.ox[k] - cx, fy = p.oy[k] - cy, fz = p.oz[k] - cz;
+                    const T c =
+                        SM == sphere_mode::plain ? fx * fx + fy * fy + fz * fz - rr : compensated_c(fx, fy, fz, r);
+                    keep(k, sphere_t<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], a[k], inv_a[k], tmin), I(i));
+                }
+            }
+        }
+    }
+    if constexpr (Planes) {
+        const I base = I(s.sphere_count);
+        for (size_t i = 0; i < s.plane_count; ++i) {
+            const T nx = s.nx[i], ny = s.ny[i], nz = s.nz[i];
+            for (int k = 0; k < W; ++k) {
+                const int o = CommonOrigin ? 0 : k;
+                const T num = nx * (s.px[i] - p.ox[o]) + ny * (s.py[i] - p.oy[o]) + nz * (s.pz[i] - p.oz[o]);
+                keep(k, plane_t(num, nx, ny, nz, p.dx[k], p.dy[k], p.dz[k], tmin), base + I(i));
+            }
+        }
+    }
+    if constexpr (Tris) {
+        const I base = I(s.sphere_count + s.plane_count);
+        for (size_t i = 0; i < s.triangle_count; ++i) {
+            const T e1x = s.e1x[i], e1y = s.e1y[i], e1z = s.e1z[i], e2x = s.e2x[i], e2y = s.e2y[i], e2z = s.e2z[i];
+            if constexpr (CommonOrigin) {
+                const T sx = p.ox[0] - s.ax[i], sy = p.oy[0] - s.ay[i], sz = p.oz[0] - s.az[i];
+                const T qx = sy * e1z - sz * e1y, qy = sz * e1x - sx * e1z, qz = sx * e1y - sy * e1x;
+                for (int k = 0; k < W; ++k)
+                    keep(k,
+                         triangle_t(sx, sy, sz, qx, qy, qz, e1x, e1y, e1z, e2x, e2y, e2z, p.dx[k], p.dy[k], p.dz[k],
+                                    tmin),
+                         base + I(i));
+            } else {
+                for (int k = 0; k < W; ++k) {
+                    const T sx = p.ox[k] - s.ax[i], sy = p.oy[k] - s.ay[i], sz = p.oz[k] - s.az[i];
+                    const T qx = sy * e1z - sz * e1y, qy = sz * e1x - sx * e1z, qz = sx * e1y - sy * e1x;
+                    keep(k,
+                         triangle_t(sx, sy, sz, qx, qy, qz, e1x, e1y, e1z, e2x, e2y, e2z, p.dx[k], p.dy[k], p.dz[k],
+                                    tmin),
+                         base + I(i));
+                }
+            }
+        }
+    }
+    for (int k = 0; k < W; ++k) {
+        tbest[k] = best_t[k];
+        object[k] = best[k];
+    }
+}
+
+// Is anything hit with tmin < t < tmax? One ray (a shadow ray) against W
+// objects at a time: here the lanes are objects, and the loop stops at the
+// first group with a blocker.
+template <class T, sphere_mode SM, bool Planes, bool Tris>
+bool any_hit(const soa_scene<T>& s, const ray<T>& r, T tmin, T tmax) {
+    const T ox = r.origin.x, oy = r.origin.y, oz = r.origin.z;
+    const T dx = r.direction.x, dy = r.direction.y, dz = r.direction.z;
+    const T a = dx * dx + dy * dy + dz * dz, inv_a = T(1) / a;
+    if constexpr (SM != sphere_mode::none) {
+        for (size_t i = 0; i < s.cx.size(); i += W) {
+            int blocked = 0;
+            for (int k = 0; k < W; ++k) {
+                const size_t j = i + size_t(k);
+                const T fx = ox - s.cx[j], fy = oy - s.cy[j], fz = oz - s.cz[j];
+                const T c = SM == sphere_mode::plain ? fx * fx + fy * fy + fz * fz - s.radius2[j]
+                                                     : compensated_c(fx, fy, fz, s.radius[j]);
+                blocked |= int(sphere_t<T, SM>(fx, fy, fz, c, s.radius2[j], dx, dy, dz, a, inv_a, tmin) < tmax);
+            }
+            if (blocked) return true;
+        }
+    }
+    if constexpr (Planes) {
+        for (size_t i = 0; i < s.px.size(); i += W) {
+            int blocked = 0;
+            for (int k = 0; k < W; ++k) {
+                const size_t j = i + size_t(k);
+                const T num = s.nx[j] * (s.px[j] - ox) + s.ny[j] * (s.py[j] - oy) + s.nz[j] * (s.pz[j] - oz);
+                blocked |= int(plane_t(num, s.nx[j], s.ny[j], s.nz[j], dx, dy, dz, tmin) < tmax);
+            }
+            if (blocked) return true;
+        }
+    }
+    if constexpr (Tris) {
+        for (size_t i = 0; i < s.ax.size(); i += W) {
+            int blocked = 0;
+            for (int k = 0; k < W; ++k) {
+                const size_t j = i + size_t(k);
+                const T sx = ox - s.ax[j], sy = oy - s.ay[j], sz = oz - s.az[j];
+                const T qx = sy * s.e1z[j] - sz * s.e1y[j], qy = sz * s.e1x[j] - sx * s.e1z[j],
+                        qz = sx * s.e1y[j] - sy * s.e1x[j];
+                blocked |= int(triangle_t(sx, sy, sz, qx, qy, qz, s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j],
+                                          s.e2z[j], dx, dy, dz, tmin) < tmax);
+            }
+            if (blocked) return true;
+        }
+    }
+    return false;
+}
+
+// Everything the pixel loop needs, in precision T.
+template <class T>
+struct context {
+    soa_scene<T> soa;
+    scene_camera<T> camera;
+    const scene<double>& world;
+    std::vector<int> material_of;  // by object number
+    T tmin;
+
+    context(const scene_description& d, int width, int height)
+        : soa(d.world), camera(d.camera, width, height), world(d.world), tmin(camera.primary_range().min) {
+        for (const auto& s : d.world.spheres) material_of.push_back(s.material);
+        for (const auto& p : d.world.planes) material_of.push_back(p.material);
+        for (const auto& t : d.world.triangles) material_of.push_back(t.material);
+    }
+
+    // The packet of rays through pixels col0 .. col0+W-1 of a row (columns
+    // past the right edge repeat the last pixel; their results are dropped).
+    void fill(packet<T>& p, int col0, int row) const {
+        for (int k = 0; k < W; ++k) {
+            const ray<T> r = camera.primary_ray(std::min(col0 + k, camera.width() - 1), row);
+            p.ox[k] = r.origin.x, p.oy[k] = r.origin.y, p.oz[k] = r.origin.z;
+            p.dx[k] = r.direction.x, p.dy[k] = r.direction.y, p.dz[k] = r.direction.z;
+        }
+    }
+
+    template <sphere_mode SM, bool Planes, bool Tris>
+    void trace(const packet<T>& p, T* t, index_t<T>* object) const {
+        if (camera.type == camera_description::kind::pinhole)
+            closest_hits<T, SM, Planes, Tris, true>(soa, p, tmin, t, object);
+        else
+            closest_hits<T, SM, Planes, Tris, false>(soa, p, tmin, t, object);
+    }
+
+    // Unit normal at a hit point of object o, facing the ray for planes and triangles.
+    vec3<T> normal(size_t o, const vec3<T>& point, const vec3<T>& direction) const {
+        if (o < soa.sphere_count) return (point - vec3<T>(soa.cx[o], soa.cy[o], soa.cz[o])) / soa.radius[o];
+        vec3<T> n;
+        if (o < soa.sphere_count + soa.plane_count) {
+            o -= soa.sphere_count;
+            n = vec3<T>(soa.nx[o], soa.ny[o], soa.nz[o]);
+        } else {
+            o -= soa.sphere_count + soa.plane_count;
+            n = normalize(cross(vec3<T>(soa.e1x[o], soa.e1y[o], soa.e1z[o]), vec3<T>(soa.e2x[o], soa.e2y[o], soa.e2z[o])));
+        }
+        return dot(n, direction) > T(0) ? -n : n;
+    }
+};
+
+// Runs body(row) for every row on every core; rethrows the first exception.
+template <class F>
+void for_each_row(int height, F&& body) {
+    std::atomic<int> next{0};
+    std::atomic<bool> stop{false};
+    std::exception_ptr error;
+    std::mutex error_mutex;
+    auto worker = [&] {
+        try {
+            for (int row; !stop && (row = next.fetch_add(1)) < height;) body(row);
+        } catch (...) {
+            std::lock_guard<std::mutex> lock(error_mutex);
+            if (!error) error = std::current_exception();
+            stop = true;
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int i = 1; i < render_threads(); ++i) pool.emplace_back(worker);
+    worker();
+    for (auto& t : pool) t.join();
+    if (error) std::rethrow_exception(error);
+}
+
+template <class T, sphere_mode SM, bool Planes, bool Tris, bool Lights>
+image render_with(const scene_description& d, int width, int height, long& rays) {
+    const context<T> ctx(d, width, height);
+    image img(width, height);
+    std::atomic<long> shadow_rays{0};
+    for_each_row(height, [&](int row) {
+        long shadows = 0;
+        ch06::occlusion_test<T> occluded;
+        if constexpr (Lights)
+            occluded = [&](const ray<T>& r, const interval<T>& range) {
+                ++shadows;
+                return any_hit<T, SM, Planes, Tris>(ctx.soa, r, range.min, range.max);
+            };
+        packet<T> p;
+        alignas(64) T t[W];
+        alignas(64) index_t<T> object[W];
+        for (int col0 = 0; col0 < width; col0 += W) {
+            ctx.fill(p, col0, row);
+            ctx.template trace<SM, Planes, Tris>(p, t, object);
+            for (int k = 0; k < W && col0 + k < width; ++k) {
+                color& out = img.at(col0 + k, row);
+                if (object[k] < 0) {
+                    out = d.world.background;
+                    continue;
+                }
+                const vec3<T> origin(p.ox[k], p.oy[k], p.oz[k]), direction(p.dx[k], p.dy[k], p.dz[k]);
+                const vec3<T> point = origin + t[k] * direction;
+                const vec3<T> n = ctx.normal(size_t(object[k]), point, direction);
+                const material m = ch06::material_at(d.world.materials[size_t(ctx.material_of[size_t(object[k])])], point);
+                if constexpr (Lights)
+                    out = ch06::shade(point, n, -direction, m, d.world.lights, d.world.ambient, occluded);
+                else
+                    out = unlit_colour(m, n, direction);
+            }
+        }
+        shadow_rays += shadows;
+    });
+    rays = long(width) * long(height) + shadow_rays.load();
+    return img;
+}
+
+template <class T, sphere_mode SM, bool Planes, bool Tris>
+primary_hits trace_with(const scene_description& d, int width, int height) {
+    const context<T> ctx(d, width, height);
+    primary_hits hits;
+    hits.object.assign(size_t(width) * size_t(height), -1);
+    hits.t.assign(size_t(width) * size_t(height), 0);
+    for_each_row(height, [&](int row) {
+        packet<T> p;
+        alignas(64) T t[W];
+        alignas(64) index_t<T> object[W];
+        for (int col0 = 0; col0 < width; col0 += W) {
+            ctx.fill(p, col0, row);
+            ctx.template trace<SM, Planes, Tris>(p, t, object);
+            for (int k = 0; k < W && col0 + k < width; ++k) {
+                size_t i = size_t(row) * size_t(width) + size_t(col0 + k);
+                hits.object[i] = int(object[k]);
+                hits.t[i] = (long double)t[k];
+            }
+        }
+    });
+    return hits;
+}
+
+// Calls f(SM, Planes, Tris, Lights) with each choice as a compile-time
+// constant (std::integral_constant), so f can instantiate exactly one kernel.
+template <class F>
+decltype(auto) dispatch(sphere_mode sm, bool planes, bool tris, bool lights, F&& f) {
+    auto pick = [](bool v, auto&& g) { return v ? g(std::true_type{}) : g(std::false_type{}); };
+    auto go = [&](auto SM) {
+        return pick(planes, [&](auto P) {
+            return pick(tris, [&](auto Tr) { return pick(lights, [&](auto L) { return f(SM, P, Tr, L); }); });
+        });
+    };
+    switch (sm) {
+        case sphere_mode::none: return go(std::integral_constant<sphere_mode, sphere_mode::none>{});
+        case sphere_mode::plain: return go(std::integral_constant<sphere_mode, sphere_mode::plain>{});
+        default: return go(std::integral_constant<sphere_mode, sphere_mode::robust>{});
+    }
+}
+
+sphere_mode mode_of(const scene_plan& plan) {
+    if (plan.spheres == 0) return sphere_mode::none;
+    return plan.form == sphere_formulation::plain ? sphere_mode::plain : sphere_mode::robust;
+}
+
+}  // namespace
+
+image render_fast(const scene_description& d, const scene_plan& plan, int width, int height, long& rays) {
+    auto run = [&](auto type) {
+        using T = decltype(type);
+        return dispatch(mode_of(plan), plan.planes > 0, plan.triangles > 0, plan.lights > 0,
+                        [&](auto SM, auto P, auto Tr, auto L) {
+                            return render_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value,
+                                               decltype(L)::value>(d, width, height, rays);
+                        });
+    };
+    return plan.prec == precision::single ? run(float{}) : run(double{});
+}
+
+primary_hits trace_primary(const scene_description& d, const scene_plan& plan, int width, int height) {
+    auto run = [&](auto type) {
+        using T = decltype(type);
+        return dispatch(mode_of(plan), plan.planes > 0, plan.triangles > 0, false, [&](auto SM, auto P, auto Tr, auto) {
+            return trace_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value>(d, width, height);
+        });
+    };
+    return plan.prec == precision::single ? run(float{}) : run(double{});
+}
+
+primary_hits trace_primary_reference(const scene_description& d, int width, int height) {
+    const bool spheres = !d.world.spheres.empty();
+    return dispatch(spheres ? sphere_mode::robust : sphere_mode::none, !d.world.planes.empty(),
+                    !d.world.triangles.empty(), false, [&](auto SM, auto P, auto Tr, auto) {
+                        return trace_with<long double, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value>(
+                            d, width, height);
+                    });
+}
+
+}  // namespace rt::render_tool

@@ -1,0 +1,43 @@
+// fast_path.hpp — the specialised renderer: brute force over
+// structure-of-arrays data, eight rays at a time, compiled for exactly what
+// the scene needs.
+//
+// This is the instructor-side renderer. Its intersection formulas are
+// written for speed (eight rays per loop so the compiler can put one ray
+// in each lane of a vector register), not for teaching; the course's
+// formulas are the chapters' exercises, which the general path
+// (general_path.hpp) calls.
+#pragma once
+
+#include "scene_plan.hpp"
+
+#include "common/image.hpp"
+#include "common/scene_file.hpp"
+
+#include <vector>
+
+namespace rt::render_tool {
+
+// Renders with the plan's precision and formulation, leaving out the loops
+// the plan leaves out. rays counts primary and shadow rays. Shading of
+// lit scenes uses chapter 06's shade().
+image render_fast(const scene_description& scene, const scene_plan& plan, int width, int height, long& rays);
+
+// The primary hit of every pixel, for measuring error: object number
+// (spheres, then planes, then triangles; -1 for a miss) and t.
+struct primary_hits {
+    std::vector<int> object;
+    std::vector<long double> t;
+};
+
+// Primary hits in the plan's precision and formulation.
+primary_hits trace_primary(const scene_description& scene, const scene_plan& plan, int width, int height);
+
+// Primary hits in long double with the robust formulation, from the file's
+// numbers: the reference the error report compares with.
+primary_hits trace_primary_reference(const scene_description& scene, int width, int height);
+
+// The vector width of the hot loop: rays per packet.
+inline constexpr int packet_width = 8;
+
+}  // namespace rt::render_tool

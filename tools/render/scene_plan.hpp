@@ -1,0 +1,59 @@
+// scene_plan.hpp — looking at a scene once, before rendering, to decide
+// what the render loop needs and what it can leave out.
+//
+// Three questions decide the plan:
+//   1. Which kinds of object are there? A loop over triangles in a scene
+//      without triangles costs a test per pixel for nothing.
+//   2. Are there lights? Without lights there is no shading model to apply
+//      and no shadow ray to cast.
+//   3. How well conditioned is the scene? The precision chapter shows that
+//      the plain sphere formula loses digits as the square of
+//          conditioning = (size of the scene) / (size of its smallest object)
+//      and the robust formula only in proportion to it. The plan picks the
+//      cheapest formulation and precision whose estimated error stays
+//      within a stated bound.
+#pragma once
+
+#include "common/program.hpp"
+#include "common/scene_file.hpp"
+
+#include <optional>
+#include <string>
+
+namespace rt::render_tool {
+
+enum class sphere_formulation { plain, robust };
+
+struct scene_plan {
+    // What the scene holds.
+    size_t spheres = 0, planes = 0, triangles = 0, lights = 0;
+    bool pinhole = true;
+
+    // Conditioning: extent is the diagonal of the box around the eye, the
+    // lights, the spheres and the triangles; smallest is the smallest sphere
+    // radius or triangle edge.
+    double extent = 0, smallest = 0;
+    double conditioning() const { return smallest > 0 ? extent / smallest : 1; }
+
+    // The choice, and the estimated hit-point error it gives, in units of
+    // the smallest object's size.
+    precision prec = precision::double_;
+    sphere_formulation form = sphere_formulation::plain;
+    double estimated_error = 0;
+    double bound = 1e-3;
+    bool general = false;          // the general path was forced (--general)
+    bool precision_forced = false; // --precision fixed the precision
+
+    // The plan in one line, naming what was left out.
+    std::string describe() const;
+};
+
+// Estimated hit-point error, in object sizes, of a formulation in a precision
+// for a scene of the given conditioning (see scene_plan.cpp for the model).
+double estimated_error(precision p, sphere_formulation f, double conditioning, bool has_spheres, bool has_triangles);
+
+// Analyses the scene and picks the cheapest (precision, formulation) whose
+// estimated error is within `bound`; `forced` fixes the precision instead.
+scene_plan make_plan(const scene_description& scene, double bound, std::optional<precision> forced);
+
+}  // namespace rt::render_tool
