@@ -1,4 +1,9 @@
 // plane.hpp — chapter 04's exercise: a ray against an infinite plane.
+//
+// A plane is every point x with  (x - p0) . n = 0  (a point p0 on it and a
+// normal n). Substituting the ray gives one linear equation in t, so there
+// is at most one crossing. This header is the contract; your code goes in
+// plane.cpp, and the reference solution implements the same declaration.
 #pragma once
 
 #include "common/hit_record.hpp"

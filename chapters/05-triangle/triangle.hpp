@@ -1,4 +1,11 @@
 // triangle.hpp — chapter 05's exercise: a ray against a triangle.
+//
+// A triangle is the part of its plane on the inner side of its three edges.
+// The exercise hits the plane (chapter 04's formula) and then tests the
+// point against the edges; the signed areas that test computes are the
+// point's barycentric coordinates. This header is the contract; your code
+// goes in triangle.cpp, and the reference solution implements the same
+// declarations.
 #pragma once
 
 #include "common/hit_record.hpp"
@@ -15,7 +22,9 @@ namespace rt::ch05 {
 // Inputs   tri, and a point p assumed to lie in the triangle's plane.
 // Returns  (alpha, beta, gamma) with p = alpha*a + beta*b + gamma*c and
 //          alpha + beta + gamma = 1. All three are >= 0 exactly when p is
-//          inside the triangle or on its edges.
+//          inside the triangle or on its edges; outside, the coordinate of
+//          the corner opposite a crossed edge is negative (signed areas).
+//          alpha belongs to corner a, beta to b, gamma to c.
 //          A degenerate triangle (zero area) returns NaN in all three.
 template <class T>
 vec3<T> barycentric(const triangle<T>& tri, const vec3<T>& p);
