@@ -180,12 +180,14 @@ TEST_CASE_TEMPLATE("hidden: the normal is unit length for any plane normal", T, 
 }
 
 TEST_CASE_TEMPLATE("hidden: extreme normal lengths still give the right hit", T, RT_SCALARS) {
-    // Normals so short or so long that n . n underflows or overflows in T.
+    // Normals so short or so long that n . n underflows or overflows in T,
+    // down to a subnormal length.
     const T tiny = sizeof(T) == 4 ? T(1e-30) : T(1e-200);
+    const T subnormal = std::numeric_limits<T>::denorm_min() * T(1024);
     const T huge = sizeof(T) == 4 ? T(1e30) : T(1e200);
     const ray<T> r{{1, 2, 3}, {0, -1, 0}};
     bool ok = true;
-    for (T len : {tiny, huge}) {
+    for (T len : {tiny, subnormal, huge}) {
         const plane<T> p{{0, 0, 0}, {0, len, 0}, 0};
         auto hit = intersect_plane(p, r, ahead<T>());
         ok = ok && near_t(hit, 2) && good_normal(*hit, p, r);

@@ -477,9 +477,10 @@ TEST_CASE_TEMPLATE("hidden: NaN inputs are misses", T, RT_SCALARS) {
 TEST_CASE_TEMPLATE("hidden: very small and very large triangles are still hit", T, RT_SCALARS) {
     // So small or so large that (b - a) x (c - a) . n underflows or overflows in T.
     const T tiny = sizeof(T) == 4 ? T(1e-12) : T(1e-80);
+    const T subnormal = std::numeric_limits<T>::denorm_min() * T(1 << 20);  // 20 bits of precision left
     const T huge = sizeof(T) == 4 ? T(1e12) : T(1e80);
     bool ok = true;
-    for (T size : {tiny, huge}) {
+    for (T size : {tiny, subnormal, huge}) {
         const triangle<T> tri{{0, 0, 0}, {2 * size, 0, 0}, {0, 2 * size, 0}, 0};
         auto inside = intersect_triangle(tri, ray<T>{{size / 2, size / 2, size}, {0, 0, -size}}, ahead<T>());
         auto outside = intersect_triangle(tri, ray<T>{{2 * size, 2 * size, size}, {0, 0, -size}}, ahead<T>());
