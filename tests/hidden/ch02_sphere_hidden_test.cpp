@@ -168,10 +168,15 @@ private:
     std::mt19937 rng_;
 };
 
-// Tolerance on t, relative to the size of the problem along the ray.
+// Tolerance on t, relative to the size of the problem along the ray. It is
+// set for the logic of this chapter, not for the numerics of chapter 07: on
+// these cases the worst float error of the half-b formula is about 5e-5, of
+// the geometric form 7e-5, and of a correct but expanded c = o.o - 2 o.C +
+// C.C - R^2 about 1.5e-3 (double: about 1e-13, 1e-13 and 3e-12), so every
+// correct formulation passes, while a wrong root is off by far more.
 template <class T>
 long double t_tolerance() {
-    return sizeof(T) == sizeof(float) ? 5e-4L : 1e-11L;
+    return sizeof(T) == sizeof(float) ? 5e-3L : 1e-10L;
 }
 
 template <class T>
