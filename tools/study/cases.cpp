@@ -142,6 +142,17 @@ family<sphere_query<T>> ground_sphere_family(const case_options& o) {
             }
         }
     }
+    // Past the range: a ten-times larger sphere seen from 1e-3.
+    {
+        int g = fam.add_group("R 1e+07 h 0.001");
+        for (int i = 0; i < o.per_group / 2; ++i) {
+            double elevation = (i % 2 ? rs.uniform(-90, 5) : rs.uniform(-3, 1)) * degree;
+            double azimuth = rs.uniform(0, 360) * degree;
+            vec3d d(std::cos(elevation) * std::cos(azimuth), std::sin(elevation), std::cos(elevation) * std::sin(azimuth));
+            vec3d origin(rs.uniform(-0.01, 0.01), 1e-3, rs.uniform(-0.01, 0.01));
+            fam.add({{to<T>(origin), to<T>(d)}, make_sphere<T>(vec3d(0, -1e7, 0), 1e7), ahead<T>()}, g);
+        }
+    }
     // The same, tilted: the "up" direction is a general one, so every
     // coordinate of f = o - C is huge and they all cancel together.
     for (double R : {1e4, 1e6}) {

@@ -161,14 +161,18 @@ outcome evaluate(const family<Q>& fam, const std::vector<reference_answer>& refs
     return out;
 }
 
-// Nanoseconds per test of a batch loop over (up to max_queries of) the
-// family's queries: the batch is repeated long enough per run, and the
+// Nanoseconds per test of a batch loop over (an evenly spaced sample of up
+// to max_queries of) the family's queries: the batch is repeated long enough per run, and the
 // median, minimum and maximum over runs are reported.
 template <class Q, class Batch>
 timing_summary time_batch(const family<Q>& fam, Batch batch, const timing_options& opt) {
     std::size_t n = std::min(fam.queries.size(), opt.max_queries);
     if (n == 0) return {};
-    const Q* data = fam.queries.data();
+    // An evenly spaced sample of the whole family, so every group is timed.
+    std::vector<Q> sample;
+    sample.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) sample.push_back(fam.queries[i * fam.queries.size() / n]);
+    const Q* data = sample.data();
     volatile double sink = batch(data, n);  // warm up: data and code into cache
     stopwatch once;
     sink = sink + batch(data, n);

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <map>
 #include <stdexcept>
 
 namespace rt::study {
@@ -122,27 +121,36 @@ void write_svg(const std::string& path, const std::vector<std::string>& families
                const std::string& subtitle) {
     const int columns = 4, panel_w = 330, panel_h = 300, margin = 50, top = 70;
     const int panel_rows = static_cast<int>((families.size() + columns - 1) / columns);
-    const int width = columns * panel_w + 20, height = top + panel_rows * panel_h + 40;
-    const char* palette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf",
-                             "#7f7f7f"};
-    // Shared axes: time 1..1000 ns, error 1e-18..1 (errors below are drawn at the floor).
-    auto x_of = [&](double ns) { return margin + (std::log10(std::clamp(ns, 1.0, 1000.0)) / 3.0) * (panel_w - margin - 20); };
-    auto y_of = [&](double err) {
-        double l = std::log10(std::clamp(err, 1e-18, 1.0));
-        return 30 + (-l / 18.0) * (panel_h - 30 - margin);
+    const int legend_y = top + panel_rows * panel_h + 10;
+    const int width = columns * panel_w + 20, height = legend_y + 60;
+    const char* palette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
+                             "#17becf", "#bcbd22", "#393b79", "#637939", "#e7969c", "#7f7f7f", "#000000"};
+    const int palette_size = static_cast<int>(sizeof palette / sizeof palette[0]);
+    // One colour per formulation name across all panels.
+    std::vector<std::string> names;
+    for (const outcome& o : rows)
+        if (std::find(names.begin(), names.end(), o.formulation) == names.end()) names.push_back(o.formulation);
+    auto colour = [&](const std::string& name) {
+        auto i = std::find(names.begin(), names.end(), name) - names.begin();
+        return palette[i % palette_size];
     };
+    // Shared axes: time 1..1000 ns, error 1e-18..1 (smaller errors, and exact answers, sit on the floor).
+    const int plot_w = panel_w - margin - 20, plot_h = panel_h - 30 - margin;
+    auto x_of = [&](double ns) { return margin + (std::log10(std::clamp(ns, 1.0, 1000.0)) / 3.0) * plot_w; };
+    auto y_of = [&](double err) { return 30 + (-std::log10(std::clamp(err, 1e-18, 1.0)) / 18.0) * plot_h; };
     std::ofstream f = open(path);
     f << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='" << height
       << "' font-family='sans-serif' font-size='11'>\n<rect width='100%' height='100%' fill='white'/>\n";
     f << "<text x='10' y='22' font-size='16'>Work-precision: error against time, one point per formulation and "
          "precision</text>\n";
     f << "<text x='10' y='40'>" << subtitle << "</text>\n";
-    f << "<text x='10' y='56'>x: ns per test (median, log); y: largest relative error of a hit on the right root "
-         "(log). Circle float, square double; a red ring marks misclassified rays (count beside it).</text>\n";
+    f << "<text x='10' y='56'>x: nanoseconds per test (median, log scale); y: largest relative error of a hit on the "
+         "right root (log scale). Circle: float; square: double. A red ring marks misclassified rays or leaks (count "
+         "beside it).</text>\n";
     for (std::size_t p = 0; p < families.size(); ++p) {
         int ox = 10 + static_cast<int>(p % columns) * panel_w, oy = top + static_cast<int>(p / columns) * panel_h;
         f << "<g transform='translate(" << ox << "," << oy << ")'>\n";
-        f << "<rect x='" << margin << "' y='30' width='" << panel_w - margin - 20 << "' height='" << panel_h - 30 - margin
+        f << "<rect x='" << margin << "' y='30' width='" << plot_w << "' height='" << plot_h
           << "' fill='none' stroke='#999'/>\n";
         f << "<text x='" << margin << "' y='22' font-size='13' font-weight='bold'>" << families[p] << "</text>\n";
         for (int e = 0; e <= 18; e += 3)
@@ -151,31 +159,32 @@ void write_svg(const std::string& path, const std::vector<std::string>& families
         for (double ns : {1.0, 10.0, 100.0, 1000.0})
             f << "<text x='" << x_of(ns) << "' y='" << panel_h - margin + 14 << "' text-anchor='middle'>" << ns
               << "</text>\n";
-        std::map<std::string, int> colour;
-        int legend = 0;
+        f << "<text x='" << margin + plot_w / 2 << "' y='" << panel_h - margin + 28 << "' text-anchor='middle' "
+             "fill='#555'>ns per test</text>\n";
         for (const outcome& o : rows) {
-            if (o.family != families[p] || o.failed) continue;
-            if (!colour.count(o.formulation)) {
-                int c = static_cast<int>(colour.size()) % 9;
-                colour[o.formulation] = c;
-                f << "<rect x='" << margin + 6 << "' y='" << 36 + 12 * legend << "' width='8' height='8' fill='"
-                  << palette[c] << "'/><text x='" << margin + 18 << "' y='" << 44 + 12 * legend << "'>" << o.formulation
-                  << "</text>\n";
-                ++legend;
-            }
-            if (o.ns.median <= 0 || o.error.count == 0) continue;
+            if (o.family != families[p] || o.failed || o.ns.median <= 0 || o.error.count == 0) continue;
             double x = x_of(o.ns.median), y = y_of(o.error.rel_max);
-            const char* c = palette[colour[o.formulation]];
+            const char* c = colour(o.formulation);
             if (o.precision == "float")
-                f << "<circle cx='" << x << "' cy='" << y << "' r='5' fill='" << c << "'/>\n";
+                f << "<circle cx='" << x << "' cy='" << y << "' r='5' fill='" << c << "' fill-opacity='0.85'/>\n";
             else
-                f << "<rect x='" << x - 4.5 << "' y='" << y - 4.5 << "' width='9' height='9' fill='" << c << "'/>\n";
+                f << "<rect x='" << x - 4.5 << "' y='" << y - 4.5 << "' width='9' height='9' fill='" << c
+                  << "' fill-opacity='0.85'/>\n";
             std::size_t bad = o.misclassified() + o.leaks;
             if (bad)
-                f << "<circle cx='" << x << "' cy='" << y << "' r='8' fill='none' stroke='red' stroke-width='1.5'/>"
-                  << "<text x='" << x + 9 << "' y='" << y - 6 << "' fill='red'>" << bad << "</text>\n";
+                f << "<circle cx='" << x << "' cy='" << y << "' r='8' fill='none' stroke='red' stroke-width='1.2'/>"
+                  << "<text x='" << x + 9 << "' y='" << y - 6 << "' fill='red' font-size='9'>" << bad << "</text>\n";
         }
         f << "</g>\n";
+    }
+    // The legend: every formulation's colour, in table order.
+    int lx = 10, ly = legend_y;
+    for (const std::string& n : names) {
+        int w = 24 + 7 * static_cast<int>(n.size());
+        if (lx + w > width - 10) lx = 10, ly += 18;
+        f << "<rect x='" << lx << "' y='" << ly << "' width='10' height='10' fill='" << colour(n) << "'/><text x='"
+          << lx + 14 << "' y='" << ly + 9 << "'>" << n << "</text>\n";
+        lx += w;
     }
     f << "</svg>\n";
 }

@@ -89,6 +89,15 @@ double_word<T> operator+(double_word<T> x, double_word<T> y) {
     return fast_two_sum(s.hi, s.lo);
 }
 
+// Sum of two double-words of the same sign: nothing cancels, so the low
+// parts can be added together before renormalising (about half the work).
+template <class T>
+double_word<T> add_same_sign(double_word<T> x, double_word<T> y) {
+    double_word<T> s = two_sum(x.hi, y.hi);
+    s.lo += x.lo + y.lo;
+    return fast_two_sum(s.hi, s.lo);
+}
+
 template <class T>
 double_word<T> operator-(double_word<T> x) {
     return {-x.hi, -x.lo};

@@ -149,8 +149,9 @@ int scale_exponent(T largest) {
     // below that: |e| <= 16 keeps both inside float's normal range, and
     // keeps Dekker's split (error_free.hpp) from overflowing.
     constexpr int comfortable = sizeof(T) == 4 ? 16 : 200;
-    int e = std::ilogb(largest);
-    return (e > comfortable || e < -comfortable) ? -e : 0;
+    static const T top = std::ldexp(T(1), comfortable + 1), bottom = std::ldexp(T(1), -comfortable);
+    if (largest < top && largest >= bottom) return 0;  // the common case: no library call
+    return -std::ilogb(largest);
 }
 }  // namespace detail
 
@@ -207,13 +208,18 @@ std::optional<T> sphere_compensated(const ray<T>& ray_, const sphere<T>& s, cons
     if (ed != 0)
         for (T& x : d) x = std::ldexp(x, ed);
 
-    dw a = two_prod(d[0], d[0]) + two_prod(d[1], d[1]) + two_prod(d[2], d[2]);
+    // Sums of squares cannot cancel: the cheaper same-sign addition will do.
+    dw a = add_same_sign(add_same_sign(two_prod(d[0], d[0]), two_prod(d[1], d[1])), two_prod(d[2], d[2]));
     dw h = f[0] * d[0] + f[1] * d[1] + f[2] * d[2];
     dw g[3] = {f[1] * d[2] - f[2] * d[1], f[2] * d[0] - f[0] * d[2], f[0] * d[1] - f[1] * d[0]};
     dw r2 = two_prod(r, r);
-    dw disc = a * r2 - (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    dw disc = a * r2 - add_same_sign(add_same_sign(g[0] * g[0], g[1] * g[1]), g[2] * g[2]);
     if (is_negative(disc)) return std::nullopt;
-    T c = detail::exact_c(f, r2);
+    // c as a double-word first; only when f.f and r^2 agree in more than
+    // 20 bits is it summed again from exact pieces (detail::exact_c).
+    dw ff = add_same_sign(add_same_sign(f[0] * f[0], f[1] * f[1]), f[2] * f[2]);
+    dw cw = ff - r2;
+    T c = std::fabs(cw.hi) > ff.hi * T(0x1p-20) ? cw.value() : detail::exact_c(f, r2);
 
     auto [t0, t1] = stable_roots(a.value(), h.value(), c, disc.value());
     // Undo the scaling: |f + t d| = r became |2^ef f + t' 2^ed d| = 2^ef r,
@@ -229,6 +235,8 @@ namespace detail {
 // Float inputs, double arithmetic: a product of two floats is exact in
 // double and a difference of two floats almost always is, so f, f x d and
 // c lose (almost) nothing; the roots are rounded to float once, at the end.
+// Only c can still cancel (seen from 1e-3 above a sphere of radius 1e7,
+// f.f and r^2 share 33 bits); that case alone takes the exact path.
 inline std::optional<float> sphere_in_double(const ray<float>& ray_, const sphere<float>& s,
                                              const interval<float>& range) {
     if (!sphere_inputs_valid(ray_, s)) return std::nullopt;
@@ -241,7 +249,19 @@ inline std::optional<float> sphere_in_double(const ray<float>& ray_, const spher
     vec3<double> g = cross(f, d);
     double disc = a * (r * r) - dot(g, g);
     if (!(disc >= 0)) return std::nullopt;
-    auto [t0, t1] = stable_roots(a, h, dot(f, f) - r * r, disc);
+    // r * r is exact (a float squared). c = f.f - r^2 keeps its digits
+    // unless f.f and r^2 agree in more than about 20 bits: then, and only
+    // then (an origin close to a huge sphere), c is summed again from the
+    // exact pieces of f. Paying only when it cancels keeps this form cheap.
+    double ff = dot(f, f), r2 = r * r, c = ff - r2;
+    if (!(std::fabs(c) > 0x1p-20 * ff)) {
+        const vec3<float>& o = ray_.origin;
+        const vec3<float>& C = s.center;
+        double_word<double> fw[3] = {two_sum(double(o.x), -double(C.x)), two_sum(double(o.y), -double(C.y)),
+                                     two_sum(double(o.z), -double(C.z))};
+        c = exact_c(fw, double_word<double>{r2, 0});
+    }
+    auto [t0, t1] = stable_roots(a, h, c, disc);
     // Rounding to float: beyond the float range the root becomes infinite
     // (and fails the range test) instead of an undefined conversion.
     auto to_float = [](double t) {
