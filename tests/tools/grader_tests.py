@@ -1,0 +1,213 @@
+#!/usr/bin/env python3
+"""Tests of the autograder itself (ctest label 'grader'; see tests/tools/CMakeLists.txt).
+
+  grader_tests.py baseline   --work DIR --build-dir TREE   solutions score full marks, stubs zero (politely)
+  grader_tests.py fixture NAME --work DIR --build-dir TREE one adversarial submission behaves as expected
+  grader_tests.py batch      --work DIR --build-dir TREE   a folder of submissions, one results file each + CSV
+
+Every grading runs the real command line (tools/grader/grade) on chapter 01
+(and 02 where a fixture needs a second chapter) against one prebuilt
+instructor tree, so the tests are quick after the first.
+"""
+
+import argparse
+import fnmatch
+import glob
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+GRADE = os.path.join(REPO, "tools", "grader", "grade")
+FIXTURES = os.path.join(REPO, "tests", "fixtures", "adversarial")
+GRADING_TIME_LIMIT = 300          # seconds: grading must end well before this
+TEST_LIMITS = ["--timeout", "3", "--render-timeout", "10"]
+
+failures = []
+
+
+def check(ok, message):
+    if not ok:
+        failures.append(message)
+        print("FAIL:", message)
+    return ok
+
+
+def solution_files(chapter):
+    """A submission's worth of the reference files of one chapter (a folder name NN-*)."""
+    folder = glob.glob(os.path.join(REPO, "solutions", f"{chapter}-*"))[0]
+    return folder, sorted(os.listdir(folder))
+
+
+def make_submission(dest, sources=(), solutions=()):
+    shutil.rmtree(dest, ignore_errors=True)
+    os.makedirs(dest)
+    for path in sources:
+        shutil.copy(path, dest)
+    for chapter in solutions:
+        folder, names = solution_files(chapter)
+        target = os.path.join(dest, "chapters", os.path.basename(folder))
+        os.makedirs(target, exist_ok=True)
+        for n in names:
+            shutil.copy(os.path.join(folder, n), target)
+    os.chmod(dest, 0o755)
+
+
+def grade(submission, out, build_dir, chapters, extra=()):
+    start = time.monotonic()
+    cmd = [sys.executable, GRADE, submission, "--out", out, "--build-dir", build_dir, "--chapters", chapters,
+           *TEST_LIMITS, *extra]
+    result = subprocess.run(cmd, capture_output=True, text=True, timeout=GRADING_TIME_LIMIT)
+    seconds = time.monotonic() - start
+    print(result.stdout[-3000:])
+    print(result.stderr[-3000:], file=sys.stderr)
+    check(result.returncode == 0, f"grade exited with {result.returncode}")
+    data = load_results(out)
+    print(f"graded {submission} in {seconds:.1f} s: {data['score'] if data else '-'}")
+    return data
+
+
+def load_results(path):
+    """results.json must exist, be valid JSON, and follow Gradescope's schema."""
+    if not check(os.path.isfile(path), f"{path} was not written"):
+        return None
+    try:
+        with open(path) as f:
+            data = json.load(f)
+    except ValueError as e:
+        check(False, f"{path} is not valid JSON: {e}")
+        return None
+    for key, kind in (("score", (int, float)), ("execution_time", (int, float)), ("output", str),
+                      ("stdout_visibility", str), ("tests", list)):
+        check(isinstance(data.get(key), kind), f"results.json: '{key}' missing or of the wrong type")
+    for t in data.get("tests", []):
+        for key, kind in (("name", str), ("number", str), ("score", (int, float)), ("max_score", (int, float)),
+                          ("status", str), ("output", str), ("tags", list), ("visibility", str)):
+            check(isinstance(t.get(key), kind), f"results.json test {t.get('name')}: '{key}' missing or wrong")
+        check(t.get("status") in ("passed", "failed"), f"{t.get('name')}: status {t.get('status')}")
+        check(0 <= t.get("score", 0) <= t.get("max_score", 0), f"{t.get('name')}: score outside [0, max]")
+    check(abs(sum(t["score"] for t in data["tests"]) - data["score"]) < 1e-9, "score is not the sum of the tests")
+    return data
+
+
+def statuses(data):
+    return {t["name"]: t["status"] for t in data["tests"]}
+
+
+def baseline_path(work):
+    return os.path.join(work, "baseline.json")
+
+
+def run_baseline(args):
+    """The solutions score full marks; the stubs score zero and say why, politely."""
+    sub = os.path.join(args.work, "solutions")
+    make_submission(sub, solutions=["01", "02"])
+    data = grade(sub, os.path.join(args.work, "solutions-results", "results.json"), args.build_dir, "01,02")
+    if data:
+        total = sum(t["max_score"] for t in data["tests"])
+        check(total > 0 and data["score"] == total, f"the solutions scored {data['score']} of {total}")
+        for t in data["tests"]:
+            check(t["status"] == "passed", f"solution failed {t['name']}: {t['output'][:300]}")
+        shutil.copy(os.path.join(args.work, "solutions-results", "results.json"), baseline_path(args.work))
+
+    stub = os.path.join(args.work, "stubs")
+    make_submission(stub, sources=[os.path.join(REPO, "chapters", "01-unit-sphere", "unit_sphere.cpp")])
+    data = grade(stub, os.path.join(args.work, "stub-results", "results.json"), args.build_dir, "01")
+    if data:
+        check(data["score"] == 0, f"the stubs scored {data['score']}")
+        for t in data["tests"]:
+            polite = "not implemented yet" in t["output"]
+            check(polite, f"stub test {t['name']} does not say 'not implemented yet': {t['output'][:300]}")
+            if t["tags"][1] == "hidden":
+                check("logged" not in t["output"] and "values:" not in t["output"],
+                      f"hidden test {t['name']} shows more than the concept: {t['output'][:300]}")
+
+
+def run_fixture(args):
+    name = args.name
+    folder = os.path.join(FIXTURES, name)
+    with open(os.path.join(folder, "expect.json")) as f:
+        expect = json.load(f)
+    root = os.geteuid() == 0
+    sub = os.path.join(args.work, "fixtures", name)
+    sources = [p for p in glob.glob(os.path.join(folder, "*")) if not p.endswith("expect.json")]
+    make_submission(sub, sources=sources, solutions=expect.get("add_solutions", []))
+    out = os.path.join(args.work, "fixtures-results", name, "results.json")
+    start = time.monotonic()
+    data = grade(sub, out, args.build_dir, expect["chapters"])
+    seconds = time.monotonic() - start
+    if data is None:
+        return
+    if expect.get("root_only") and not root:
+        print(f"NOTE: '{name}' needs user isolation, which is off when the grader is not run as root: "
+              "only the validity of results.json was checked.")
+        return
+    with open(baseline_path(args.work)) as f:
+        base = statuses(json.load(f))
+    mine = statuses(data)
+    graded = [n for n in base if n.split(".", 1)[0] in {f"ch{c}" for c in expect["chapters"].split(",")}]
+    for test in graded:
+        check(test in mine, f"{name}: test {test} is missing from the results")
+        if test not in mine:
+            continue
+        if any(fnmatch.fnmatchcase(test, p) for p in expect["must_fail"]):
+            check(mine[test] == "failed", f"{name}: {test} passed, but this submission must fail it")
+        elif not any(fnmatch.fnmatchcase(test, p) for p in expect["may_differ"]):
+            check(mine[test] == base[test], f"{name}: {test} is {mine[test]}, but {base[test]} for the solutions")
+        check(not (mine[test] == "passed" and base[test] == "failed"), f"{name}: false pass of {test}")
+    for chapter, words in expect.get("compilation", {}).items():
+        entry = [t for t in data["tests"] if t["name"] == f"{chapter} compilation"]
+        check(entry and words in entry[0]["output"] and entry[0]["visibility"] == "visible",
+              f"{name}: no visible '{chapter} compilation' entry saying '{words}'")
+    forbidden = expect.get("forbidden_in_results")
+    if forbidden:
+        with open(out) as f:
+            check(forbidden not in f.read(), f"{name}: '{forbidden}' appears in the results")
+    print(f"{name}: graded in {seconds:.1f} s, score {data['score']}")
+
+
+def run_batch(args):
+    folder = os.path.join(args.work, "batch-in")
+    shutil.rmtree(folder, ignore_errors=True)
+    make_submission(os.path.join(folder, "alice"), solutions=["01"])
+    make_submission(os.path.join(folder, "bob"), sources=[os.path.join(FIXTURES, "segfault", "unit_sphere.cpp")])
+    make_submission(os.path.join(folder, "carol"))
+    out = os.path.join(args.work, "batch-out")
+    shutil.rmtree(out, ignore_errors=True)
+    cmd = [sys.executable, os.path.join(REPO, "tools", "grader", "grade-batch"), folder, "--out", out,
+           "--build-dir", args.build_dir, "--chapters", "01", "--jobs", "2", *TEST_LIMITS]
+    result = subprocess.run(cmd, capture_output=True, text=True, timeout=GRADING_TIME_LIMIT)
+    print(result.stdout, result.stderr)
+    check(result.returncode == 0, f"grade-batch exited with {result.returncode}")
+    scores = {}
+    for who in ("alice", "bob", "carol"):
+        data = load_results(os.path.join(out, who, "results.json"))
+        scores[who] = data["score"] if data else None
+    with open(os.path.join(out, "scores.csv")) as f:
+        rows = f.read().splitlines()
+    check(rows[0].startswith("submission,score,max_score,ch01") and len(rows) == 4, f"scores.csv: {rows}")
+    check(scores["alice"] and scores["carol"] == 0 and 0 < scores["bob"] < scores["alice"],
+          f"implausible batch scores {scores}")
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("what", choices=["baseline", "fixture", "batch"])
+    p.add_argument("name", nargs="?")
+    p.add_argument("--work", required=True)
+    p.add_argument("--build-dir", required=True)
+    args = p.parse_args()
+    os.makedirs(args.work, exist_ok=True)
+    {"baseline": run_baseline, "fixture": run_fixture, "batch": run_batch}[args.what](args)
+    if failures:
+        print(f"{len(failures)} check(s) failed")
+        return 1
+    print("all checks passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

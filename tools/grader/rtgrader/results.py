@@ -1,0 +1,83 @@
+"""results.json in Gradescope's schema, and the summary printed on the terminal.
+
+The file is written atomically (a temporary file, then a rename), so it is
+always complete, valid JSON, whatever happened while grading."""
+
+import json
+import os
+
+
+def gradescope(results, notes, elapsed, chapters):
+    tests = []
+    index = {}
+    for r in results:
+        number = chapters[r.chapter]["number"] if r.chapter in chapters else "00"
+        index[r.chapter] = index.get(r.chapter, 0) + 1
+        score = r.points if r.passed else 0
+        tests.append({
+            "name": r.name,
+            "number": f"{int(number)}.{index[r.chapter]}",
+            "score": score,
+            "max_score": r.points,
+            "status": "passed" if r.passed else "failed",
+            "output": r.output,
+            "tags": [r.chapter, r.kind],
+            "visibility": r.visibility,
+        })
+    score = sum(t["score"] for t in tests)
+    total = sum(t["max_score"] for t in tests)
+    lines = [f"Score {score:g} / {total:g}."] + [f"Note: {n}" for n in notes]
+    return {
+        "score": score,
+        "execution_time": int(round(elapsed)),
+        "output": "\n".join(lines),
+        "stdout_visibility": "hidden",
+        "tests": tests,
+    }
+
+
+def failure(message, elapsed=0.0):
+    """The results file when grading could not even start."""
+    return {"score": 0, "execution_time": int(round(elapsed)), "output": message,
+            "stdout_visibility": "hidden",
+            "tests": [{"name": "grader", "number": "0.1", "score": 0, "max_score": 0, "status": "failed",
+                       "output": message, "tags": ["grader"], "visibility": "visible"}]}
+
+
+def write(data, path):
+    folder = os.path.dirname(os.path.abspath(path))
+    os.makedirs(folder, exist_ok=True)
+    tmp = path + ".tmp"
+    with open(tmp, "w") as f:
+        json.dump(data, f, indent=2)
+        f.write("\n")
+    os.replace(tmp, path)
+
+
+def summary(data, chapters, path=None):
+    """A readable summary: one line per chapter, then what failed."""
+    out = []
+    by_chapter = {}
+    for t in data["tests"]:
+        by_chapter.setdefault(t["tags"][0], []).append(t)
+    for cid, tests in by_chapter.items():
+        title = chapters.get(cid, {}).get("title", "")
+        score = sum(t["score"] for t in tests)
+        total = sum(t["max_score"] for t in tests)
+        parts = []
+        for kind in ("public", "hidden", "render"):
+            mine = [t for t in tests if t["tags"][1] == kind]
+            if mine:
+                parts.append(f"{kind} {sum(t['status'] == 'passed' for t in mine)}/{len(mine)}")
+        compiled = not any(t["tags"][1] == "compilation" for t in tests)
+        out.append(f"{cid} {title:<22} {score:>6g} / {total:<6g} "
+                   + (", ".join(parts) if compiled else "DID NOT BUILD"))
+        failed = [t for t in tests if t["status"] != "passed" and (compiled or t["tags"][1] == "compilation")]
+        for t in failed[:8]:
+            first = next((line for line in t["output"].splitlines() if line.strip()), "")
+            out.append(f"    failed: {t['name']}: {first[:150]}")
+        if len(failed) > 8:
+            out.append(f"    ... and {len(failed) - 8} more failed (see the results file)")
+    out.append(data["output"])
+    out.append(f"({data['execution_time']} s)" + (f" -> {path}" if path else ""))
+    return "\n".join(out)

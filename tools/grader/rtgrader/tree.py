@@ -1,0 +1,259 @@
+"""The instructor's tree the grader builds against, prepared once and reused.
+
+A grading folder (--build-dir, default build/grader) holds:
+
+  source/      a copy of the repository (without build folders and .git),
+               synchronised by content, so unchanged files keep their time
+               stamps and nothing rebuilds; as root, solutions/ and
+               tests/hidden/ in it are readable by root only
+  build/       the CMake build of source/ with every chapter on the student
+               side (RT_STUDENT_CHAPTERS=all) and each chapter's earlier
+               chapters from the solutions (RT_DEPENDENCIES_FROM_SOLUTIONS)
+  stubs/       the compiled stubs' object files, put back for chapters a
+               submission does not provide
+  state.json   the chapters, their exercise files' compile commands and the
+               test-case names, found once per change of the source
+
+Grading a submission compiles only its exercise files (with the compile
+command CMake wrote), drops the objects where the build expects them, and
+lets ninja archive and link the chapter's executables: nothing else rebuilds.
+"""
+
+import filecmp
+import fcntl
+import glob
+import json
+import os
+import shlex
+import shutil
+import subprocess
+from contextlib import contextmanager
+
+from . import sandbox
+
+SKIP_AT_TOP = {".git", "out"}
+PRIVATE_DIRS = ("solutions", "tests/hidden", "tests/fixtures")
+
+
+def repository_root():
+    return os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+
+
+@contextmanager
+def locked(folder):
+    """One grader at a time may change the build tree (the batch runs several)."""
+    os.makedirs(folder, exist_ok=True)
+    with open(os.path.join(folder, "grader.lock"), "w") as f:
+        fcntl.flock(f, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(f, fcntl.LOCK_UN)
+
+
+def _skipped(rel):
+    top = rel.split(os.sep, 1)[0]
+    return top in SKIP_AT_TOP or top.startswith("build") or "__pycache__" in rel.split(os.sep)
+
+
+def sync_source(repo, dest):
+    """Makes dest a copy of repo; returns how many files changed."""
+    changed = 0
+    wanted = set()
+    for dirpath, dirnames, filenames in os.walk(repo):
+        rel_dir = os.path.relpath(dirpath, repo)
+        dirnames[:] = [d for d in dirnames if not _skipped(os.path.normpath(os.path.join(rel_dir, d)))]
+        for name in filenames:
+            rel = os.path.normpath(os.path.join(rel_dir, name))
+            src = os.path.join(dirpath, name)
+            if _skipped(rel) or not os.path.isfile(src) or os.path.islink(src):
+                continue
+            wanted.add(rel)
+            dst = os.path.join(dest, rel)
+            if os.path.isfile(dst) and filecmp.cmp(src, dst, shallow=False):
+                continue
+            os.makedirs(os.path.dirname(dst), exist_ok=True)
+            if os.path.exists(dst):
+                os.chmod(dst, 0o644)
+            shutil.copy2(src, dst)
+            changed += 1
+    for dirpath, _, filenames in os.walk(dest):
+        for name in filenames:
+            rel = os.path.relpath(os.path.join(dirpath, name), dest)
+            if rel not in wanted:
+                os.remove(os.path.join(dirpath, name))
+                changed += 1
+    return changed
+
+
+def protect(folder):
+    """As root: the grading folder is traversable, the build tree and the
+    private sources are root's alone, the public sources readable."""
+    os.chmod(folder, 0o711)
+    source = os.path.join(folder, "source")
+    for dirpath, dirnames, filenames in os.walk(source):
+        os.chmod(dirpath, 0o755)
+        for name in filenames:
+            os.chmod(os.path.join(dirpath, name), 0o644)
+    for rel in PRIVATE_DIRS:
+        path = os.path.join(source, rel)
+        if os.path.isdir(path):
+            os.chmod(path, 0o700)
+    for rel in ("build", "stubs"):
+        path = os.path.join(folder, rel)
+        if os.path.isdir(path):
+            os.chmod(path, 0o700)
+
+
+class Tree:
+    def __init__(self, folder, repo=None):
+        self.folder = os.path.abspath(folder)
+        self.repo = os.path.abspath(repo or repository_root())
+        self.source = os.path.join(self.folder, "source")
+        self.build = os.path.join(self.folder, "build")
+        self.stubs = os.path.join(self.folder, "stubs")
+        self.state_path = os.path.join(self.folder, "state.json")
+        self.state = None
+
+    @property
+    def has_solutions(self):
+        return os.path.isdir(os.path.join(self.source, "solutions"))
+
+    def prepare(self, jobs, wanted=None, log=print):
+        """Syncs the repository, and configures and builds the instructor tree
+        for the chapters wanted (two-digit numbers; None: all) when needed."""
+        with locked(self.folder):
+            os.makedirs(self.source, exist_ok=True)
+            changed = sync_source(self.repo, self.source)
+            if sandbox.is_root():
+                protect(self.folder)
+            old = None
+            if os.path.isfile(self.state_path):
+                with open(self.state_path) as f:
+                    old = json.load(f)
+            if changed == 0 and old is not None:
+                if wanted is None:
+                    wanted = [ch["number"] for ch in old["chapters"].values()]
+                if set(wanted) <= set(old["built"]):
+                    self.state = old
+                    return
+            log(f"grader: preparing the instructor tree in {self.folder} ({changed} files changed)")
+            self._restore_stubs(old)
+            self._configure()
+            chapters = self._chapters()
+            numbers = [ch["number"] for ch in chapters.values()]
+            if wanted is None:
+                wanted = numbers
+            unknown = sorted(set(wanted) - set(numbers))
+            if unknown:
+                raise SystemExit(f"grader: no chapter {', '.join(unknown)} in {self.repo}")
+            # Chapters built before stay built (their objects are in the tree).
+            built = sorted(set(wanted) | (set(old["built"]) & set(numbers) if old and changed == 0 else set()))
+            targets = ["imgcmp"]
+            for ch in chapters.values():
+                if ch["number"] in built:
+                    targets += ch["targets"]
+            result = subprocess.run(["ninja", "-C", self.build, f"-j{jobs}"] + targets,
+                                    capture_output=True, text=True)
+            if result.returncode != 0:
+                raise SystemExit("grader: the instructor tree does not build:\n" + result.stdout[-4000:]
+                                 + result.stderr[-2000:])
+            for ch in chapters.values():
+                ch["built"] = ch["number"] in built
+                if ch["built"]:
+                    self._save_stub(ch)
+                    ch["tests"] = {kind: list_test_cases(ch[f"{kind}_tests"])
+                                   for kind in ("public", "hidden") if ch.get(f"{kind}_tests")}
+            self.state = {"chapters": chapters, "built": built, "has_solutions": self.has_solutions}
+            with open(self.state_path, "w") as f:
+                json.dump(self.state, f, indent=1)
+            if sandbox.is_root():
+                protect(self.folder)
+
+    def _configure(self):
+        cmd = ["cmake", "-S", self.source, "-B", self.build, "-G", "Ninja",
+               "-DCMAKE_BUILD_TYPE=RelWithDebInfo", "-DRT_WARNINGS_AS_ERRORS=OFF", "-DRT_SANITIZE=OFF",
+               "-DRT_STUDENT_CHAPTERS=all", "-DRT_DISCOVER_TESTS=OFF"]
+        cmd.append("-DRT_DEPENDENCIES_FROM_SOLUTIONS=" + ("ON" if self.has_solutions else "OFF"))
+        result = subprocess.run(cmd, capture_output=True, text=True)
+        if result.returncode != 0:
+            raise SystemExit("grader: configuring the instructor tree failed:\n" + result.stderr[-4000:])
+
+    def _chapters(self):
+        """Reads the chapter descriptions CMake wrote, and each exercise file's compile command."""
+        with open(os.path.join(self.build, "compile_commands.json")) as f:
+            commands = {os.path.normpath(e["file"]): e for e in json.load(f)}
+        chapters = {}
+        for path in sorted(glob.glob(os.path.join(self.build, "rt_chapters", "ch*.json"))):
+            with open(path) as f:
+                ch = json.load(f)
+            ch["compile"] = {}
+            for ex in ch["exercises"]:
+                entry = commands.get(os.path.normpath(os.path.join(ch["chapter_dir"], ex)))
+                if entry is None:
+                    raise SystemExit(f"grader: no compile command for {ch['id']} {ex} in compile_commands.json")
+                args = shlex.split(entry["command"])
+                obj = args[args.index("-o") + 1]
+                ch["compile"][ex] = {"args": args, "object": os.path.join(entry["directory"], obj)}
+            ch["targets"] = [f"{ch['id']}_{kind}_tests" for kind in ("public", "hidden")
+                             if ch.get(f"{kind}_tests")] + [ch["id"]]
+            chapters[ch["id"]] = ch
+        return chapters
+
+    def _save_stub(self, ch):
+        for ex, c in ch["compile"].items():
+            c["mtime_ns"] = os.stat(c["object"]).st_mtime_ns
+            dst = os.path.join(self.stubs, ch["id"], ex + ".o")
+            os.makedirs(os.path.dirname(dst), exist_ok=True)
+            shutil.copyfile(c["object"], dst)
+
+    def _restore_stubs(self, old):
+        """Puts the stubs' objects back, so the tree never keeps a submission's code."""
+        if old is None:
+            return
+        for ch in old["chapters"].values():
+            for ex, c in ch["compile"].items():
+                saved = os.path.join(self.stubs, ch["id"], ex + ".o")
+                if ch.get("built") and os.path.isfile(saved) and os.path.isdir(os.path.dirname(c["object"])):
+                    shutil.copyfile(saved, c["object"])
+                    os.utime(c["object"], ns=(c["mtime_ns"], c["mtime_ns"]))
+            if ch.get("built") and os.path.exists(ch.get("student_library", "")):
+                os.remove(ch["student_library"])
+
+    def chapters(self):
+        return self.state["chapters"]
+
+    def link(self, objects, chapter_ids, log_dir):
+        """Places each chapter's objects (the submission's, or the stubs') and
+        links the executables of chapter_ids. Returns {chapter id: error text or ''}.
+        Call with the lock held."""
+        for ch in self.chapters().values():
+            if not ch.get("built"):
+                continue
+            for ex, c in ch["compile"].items():
+                mine = objects.get(ch["id"], {}).get(ex)
+                shutil.copyfile(mine or os.path.join(self.stubs, ch["id"], ex + ".o"), c["object"])
+                # Ninja trusts an object whose time stamp is the one it recorded
+                # (a newer one would make it recompile the stub from source) ...
+                os.utime(c["object"], ns=(c["mtime_ns"], c["mtime_ns"]))
+            # ... and archives the library again because it is gone.
+            if os.path.exists(ch["student_library"]):
+                os.remove(ch["student_library"])
+        errors = {}
+        for cid in chapter_ids:
+            ch = self.chapters()[cid]
+            result = subprocess.run(["ninja", "-C", self.build, "-j2"] + ch["targets"],
+                                    capture_output=True, text=True)
+            errors[cid] = "" if result.returncode == 0 else (result.stdout + result.stderr)
+        return errors
+
+
+def list_test_cases(executable):
+    """The test-case names of a doctest executable built by the instructor."""
+    result = subprocess.run([executable, "--list-test-cases", "--no-version"], capture_output=True, text=True,
+                            timeout=60)
+    lines = result.stdout.splitlines()
+    separators = [i for i, line in enumerate(lines) if line.startswith("=====")]
+    if result.returncode != 0 or len(separators) < 2:
+        raise SystemExit(f"grader: cannot list the test cases of {executable}:\n{result.stdout}{result.stderr}")
+    return [line for line in lines[separators[0] + 1:separators[1]] if line.strip()]
