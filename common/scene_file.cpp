@@ -102,7 +102,8 @@ private:
             if (c == ' ' || c == '\t' || c == '\n' || c == '\r') {
                 ++pos_;
             } else if (c == '/' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '/') {
-                while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
+                // Ends where nlohmann-json ends it: at a line break.
+                while (pos_ < text_.size() && text_[pos_] != '\n' && text_[pos_] != '\r') ++pos_;
             } else if (c == '/' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '*') {
                 size_t end = text_.find("*/", pos_ + 2);
                 pos_ = end == std::string::npos ? text_.size() : end + 2;
@@ -134,6 +135,7 @@ private:
             std::map<std::string, bool> seen;
             while (pos_ < text_.size() && peek() != '}') {
                 size_t key_pos = pos_;
+                if (peek() != '"') break;  // cannot happen after nlohmann accepted the text; never loop
                 std::string key = string_token();
                 std::string child = path.empty() ? key : path + "." + key;
                 if (seen[key]) fail(key_pos, child, "this key appears twice in the same object");
@@ -152,7 +154,9 @@ private:
             ++pos_;
             skip_space();
             for (size_t i = 0; pos_ < text_.size() && peek() != ']'; ++i) {
+                const size_t before = pos_;
                 value(path + "[" + std::to_string(i) + "]", depth + 1);
+                if (pos_ == before) break;  // no progress: cannot happen for valid JSON; never loop
                 skip_space();
                 if (peek() == ',') ++pos_;
                 skip_space();
@@ -555,7 +559,7 @@ size_t find_number_token(const std::string& text, const std::string& token, size
             }
             ++i;
         } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') {
-            while (i < text.size() && text[i] != '\n') ++i;
+            while (i < text.size() && text[i] != '\n' && text[i] != '\r') ++i;
         } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
             size_t end = text.find("*/", i + 2);
             i = end == std::string::npos ? text.size() : end + 2;
@@ -572,6 +576,12 @@ size_t find_number_token(const std::string& text, const std::string& token, size
 }  // namespace
 
 scene_description parse_scene(const std::string& text, const std::string& source) {
+    // nlohmann-json stops reading at a NUL byte and ignores the rest, which
+    // would let garbage after it pass unseen: a scene file is text.
+    if (size_t nul = text.find('\0'); nul != std::string::npos) {
+        auto [line, column] = line_and_column(text, nul);
+        throw scene_error(source, line, column, "", "a NUL byte: a scene file must be text");
+    }
     // Numbers too large for a double are blanked out (same length, so every
     // offset stays put) and reported once the rest is known to be valid
     // JSON, at their field.

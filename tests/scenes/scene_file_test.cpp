@@ -307,3 +307,16 @@ TEST_CASE("every broken scene in tests/scenes/broken/ is rejected with the error
     }
     CHECK(count > 0);
 }
+
+TEST_CASE("a NUL byte is refused: nlohmann-json would ignore everything after it") {
+    std::string text = std::string("{") + minimal_camera + "}";
+    text += std::string(1, '\0') + "garbage";
+    scene_error e = error_of(text);
+    CHECK(contains(e.problem(), "NUL byte"));
+    CHECK(e.column() == int(text.find('\0')) + 1);
+}
+
+TEST_CASE("a comment ended by a carriage return is read as nlohmann-json reads it") {
+    scene_description d = parse_scene(std::string("// first line\r{") + minimal_camera + "}", "t.json");
+    CHECK(d.camera.eye == vec3d(0, 0, 5));
+}
