@@ -90,6 +90,8 @@ def grade_main(argv=None):
     p = argparse.ArgumentParser(prog="grade", description="Grade one submission and write results.json.")
     p.add_argument("submission", nargs="?", help="a student's kit, or a folder with just their exercise files")
     p.add_argument("--out", default="results.json", help="where to write results.json")
+    p.add_argument("--prepare-only", action="store_true",
+                   help="only build the instructor tree in --build-dir (Gradescope's setup.sh)")
     p.add_argument("--check-manifest", action="store_true",
                    help="only check that every test has a manifest entry and every entry a test")
     p.add_argument("--missing-manifest", action="store_true",
@@ -104,6 +106,12 @@ def grade_main(argv=None):
     args = p.parse_args(argv)
     log = lambda s: print(s, file=sys.stderr)
     start = time.monotonic()
+    if args.prepare_only:
+        t, grader, entries, problems, path = _setup(args, log)
+        print(f"grader: the instructor tree in {t.folder} is ready ({', '.join(grader.chapter_ids)})")
+        if problems:
+            print(_manifest_report(grader, entries, problems, path))
+        return 1 if problems else 0
     if args.check_manifest and args.from_build:
         return _check_manifest_from_build(args)
     if args.check_manifest or args.missing_manifest or args.update_manifest:

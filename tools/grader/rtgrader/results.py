@@ -74,7 +74,10 @@ def summary(data, chapters, path=None):
                    + (", ".join(parts) if compiled else "DID NOT BUILD"))
         failed = [t for t in tests if t["status"] != "passed" and (compiled or t["tags"][1] == "compilation")]
         for t in failed[:8]:
-            first = next((line for line in t["output"].splitlines() if line.strip()), "")
+            lines = [line.strip() for line in t["output"].splitlines() if line.strip()]
+            telling = [line for line in lines if "ERROR:" in line or "logged:" in line or "exception" in line]
+            first = (telling or lines or [""])[0]
+            first = first.split("ERROR:", 1)[-1].strip()
             out.append(f"    failed: {t['name']}: {first[:150]}")
         if len(failed) > 8:
             out.append(f"    ... and {len(failed) - 8} more failed (see the results file)")
