@@ -148,8 +148,8 @@ int main(int argc, char** argv) {
         return 2;
     }
     if (quick) s.cases.per_group = 32, s.timing = {3, 0.0002, 512};
-    if (longer) s.cases.per_group = 4096, s.timing = {21, 0.005, 4096};
-    else if (!quick) s.cases.per_group = 2048, s.timing = {9, 0.003, 4096};
+    if (longer) s.cases.per_group = 65536, s.timing = {31, 0.02, 4096};
+    else if (!quick) s.cases.per_group = 16384, s.timing = {15, 0.01, 4096};
     if (per_group > 0) s.cases.per_group = per_group;
 
     std::ostringstream machine;

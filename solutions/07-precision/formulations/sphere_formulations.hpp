@@ -176,6 +176,31 @@ T exact_c(const double_word<T> (&f)[3], double_word<T> r2) {
 }
 }  // namespace detail
 
+template <class T>
+std::optional<T> sphere_compensated(const ray<T>& ray_, const sphere<T>& s, const interval<T>& range);
+
+namespace detail {
+// Rounds a double root to float; beyond the float range it becomes infinite
+// (and fails the range test) instead of an undefined conversion.
+inline float to_float(double t) {
+    constexpr double top = std::numeric_limits<float>::max();
+    return std::fabs(t) <= top ? static_cast<float>(t) : std::copysign(infinity<float>, static_cast<float>(t));
+}
+
+// Float data, double-double arithmetic: the inputs convert exactly, and the
+// range is converted too, so the double answer is rounded to float once.
+inline std::optional<float> sphere_float_in_double_word(const ray<float>& ray_, const sphere<float>& s,
+                                                        const interval<float>& range) {
+    ray<double> r{convert<double>(ray_.origin), convert<double>(ray_.direction)};
+    sphere<double> sd{convert<double>(s.center), double(s.radius), s.material};
+    auto t = sphere_compensated<double>(r, sd, interval<double>{double(range.min), double(range.max)});
+    if (!t) return std::nullopt;
+    float tf = to_float(*t);
+    if (range.contains(tf)) return tf;
+    return std::nullopt;
+}
+}  // namespace detail
+
 // 6. The compensated form: every quantity that cancels is carried as a
 // double-word (error_free.hpp), so it keeps twice the digits of T:
 //   * f = o - C is exact (two_sum), so a ray origin 0.01 above a sphere of
@@ -213,8 +238,16 @@ std::optional<T> sphere_compensated(const ray<T>& ray_, const sphere<T>& s, cons
     dw h = f[0] * d[0] + f[1] * d[1] + f[2] * d[2];
     dw g[3] = {f[1] * d[2] - f[2] * d[1], f[2] * d[0] - f[0] * d[2], f[0] * d[1] - f[1] * d[0]};
     dw r2 = two_prod(r, r);
-    dw disc = a * r2 - add_same_sign(add_same_sign(g[0] * g[0], g[1] * g[1]), g[2] * g[2]);
+    dw ar2 = a * r2;
+    dw disc = ar2 - add_same_sign(add_same_sign(g[0] * g[0], g[1] * g[1]), g[2] * g[2]);
     if (is_negative(disc)) return std::nullopt;
+    if constexpr (sizeof(T) == sizeof(float)) {
+        // A ray grazing a huge sphere: the discriminant is 2^-20 or less of
+        // its terms, so float-float (48 bits) leaves it fewer than 28 good
+        // bits, and the roots would lose ULPs. Only then, redo the test in
+        // double-double: the float inputs are exact in double.
+        if (disc.hi < ar2.hi * T(0x1p-20)) return detail::sphere_float_in_double_word(ray_, s, range);
+    }
     // c as a double-word first; only when f.f and r^2 agree in more than
     // 20 bits is it summed again from exact pieces (detail::exact_c).
     dw ff = add_same_sign(add_same_sign(f[0] * f[0], f[1] * f[1]), f[2] * f[2]);
@@ -247,8 +280,11 @@ inline std::optional<float> sphere_in_double(const ray<float>& ray_, const spher
     if (!(a > 0)) return std::nullopt;
     double h = dot(f, d);
     vec3<double> g = cross(f, d);
-    double disc = a * (r * r) - dot(g, g);
+    double ar2 = a * (r * r), disc = ar2 - dot(g, g);
     if (!(disc >= 0)) return std::nullopt;
+    // A grazing ray: the discriminant cancelled more than 26 of double's 53
+    // bits, too few left for float's 24. Only then, double-double.
+    if (disc < ar2 * 0x1p-26) return sphere_float_in_double_word(ray_, s, range);
     // r * r is exact (a float squared). c = f.f - r^2 keeps its digits
     // unless f.f and r^2 agree in more than about 20 bits: then, and only
     // then (an origin close to a huge sphere), c is summed again from the
@@ -262,12 +298,6 @@ inline std::optional<float> sphere_in_double(const ray<float>& ray_, const spher
         c = exact_c(fw, double_word<double>{r2, 0});
     }
     auto [t0, t1] = stable_roots(a, h, c, disc);
-    // Rounding to float: beyond the float range the root becomes infinite
-    // (and fails the range test) instead of an undefined conversion.
-    auto to_float = [](double t) {
-        constexpr double top = std::numeric_limits<float>::max();
-        return std::fabs(t) <= top ? static_cast<float>(t) : std::copysign(infinity<float>, static_cast<float>(t));
-    };
     return nearest_in_range(to_float(t0), to_float(t1), range);
 }
 }  // namespace detail
