@@ -4,6 +4,7 @@ limited process, render each chapter's picture, and score the lot."""
 
 import fcntl
 import os
+import queue
 import re
 import secrets
 import select
@@ -146,16 +147,23 @@ class Grader:
         suspicious = self._scan(sources)
         to_compile = [cid for cid in self.chapter_ids if cid not in problems]
         lanes = max(1, self.options.jobs)
+        free_lanes = queue.Queue()
+        for lane in range(lanes):
+            free_lanes.put(lane)
 
-        def compile_one(i, cid):
-            lane_user = sandbox.sandbox_user(slot, i % lanes) if user is not None else None
-            found = self._compile(chapters[cid], sources[cid], work, logs, lane_user)
+        def compile_one(cid):
+            lane = free_lanes.get()   # a lane (user) no other compile is using now
+            try:
+                lane_user = sandbox.sandbox_user(slot, lane + 1) if user is not None else None
+                found = self._compile(chapters[cid], sources[cid], work, logs, lane_user)
+            finally:
+                free_lanes.put(lane)
             if user is not None:  # the tests run as the worker's own user
                 os.chown(os.path.join(work, cid), *user)
             return found
 
         with ThreadPoolExecutor(max_workers=lanes) as pool:
-            compiled = dict(zip(to_compile, pool.map(compile_one, range(len(to_compile)), to_compile)))
+            compiled = dict(zip(to_compile, pool.map(compile_one, to_compile)))
         objects = {}
         for cid, (objs, error) in compiled.items():
             if error:

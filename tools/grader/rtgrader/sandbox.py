@@ -143,8 +143,21 @@ def _kill_everything(pgid, uid, token):
         time.sleep(0.02)
 
 
-def _count_own_processes():
-    return len(_processes_of_uid(os.getuid()))
+def _count_own_threads():
+    """RLIMIT_NPROC counts threads, not processes, of the real user."""
+    uid = os.getuid()
+    total = 0
+    for name in os.listdir("/proc"):
+        if not name.isdigit():
+            continue
+        try:
+            with open(f"/proc/{name}/status") as f:
+                fields = dict(line.split(":", 1) for line in f if ":" in line)
+            if int(fields["Uid"].split()[0]) == uid:
+                total += int(fields["Threads"])
+        except (OSError, KeyError, ValueError):
+            pass
+    return total
 
 
 def read_capped(path, cap):
@@ -166,7 +179,7 @@ def run_limited(cmd, cwd, limits, log_path, user=None, env_extra=None, pass_fds=
         "RT_GRADER_TOKEN": token,
     }
     env.update(env_extra or {})
-    nproc = limits.processes if user is not None else _count_own_processes() + limits.processes
+    nproc = limits.processes if user is not None else _count_own_threads() + limits.processes
 
     def set_limits():  # runs in the child after setuid, just before exec
         resource.setrlimit(resource.RLIMIT_CPU, (limits.cpu_seconds, limits.cpu_seconds + 1))
