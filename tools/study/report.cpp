@@ -91,6 +91,37 @@ void print_group_table(std::ostream& os, const std::vector<std::string>& groups,
     }
 }
 
+void print_summary_table(std::ostream& os, const std::vector<std::string>& families, const std::vector<outcome>& rows) {
+    os << "\n| formulation | prec |";
+    for (const std::string& f : families) os << " " << f << " |";
+    os << "\n|---|---|";
+    for (std::size_t i = 0; i < families.size(); ++i) os << "---|";
+    os << "\n";
+    std::vector<std::pair<std::string, std::string>> keys;
+    for (const outcome& o : rows) {
+        if (std::find(families.begin(), families.end(), o.family) == families.end()) continue;
+        std::pair<std::string, std::string> k{o.formulation, o.precision};
+        if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
+    }
+    for (const auto& [name, precision] : keys) {
+        os << "| " << name << " | " << precision << " |";
+        for (const std::string& f : families) {
+            const outcome* found = nullptr;
+            for (const outcome& o : rows)
+                if (o.family == f && o.formulation == name && o.precision == precision) found = &o;
+            if (!found || found->failed) {
+                os << " - |";
+                continue;
+            }
+            os << " " << found->misclassified() << " / " << (found->error.count ? number(found->error.ulp_max) : "-")
+               << " / " << fmt("%.0f", found->ns.median);
+            if (found->rays) os << " (leaks " << found->leaks << ")";
+            os << " |";
+        }
+        os << "\n";
+    }
+}
+
 void write_csv(const std::string& path, const std::vector<outcome>& rows) {
     std::ofstream f = open(path);
     f << "family,formulation,precision,queries,hit_ratio,ns_median,ns_min,ns_max,ulp_median,ulp_p99,ulp_max,"
@@ -145,8 +176,8 @@ void write_svg(const std::string& path, const std::vector<std::string>& families
          "precision</text>\n";
     f << "<text x='10' y='40'>" << subtitle << "</text>\n";
     f << "<text x='10' y='56'>x: nanoseconds per test (median, log scale); y: largest relative error of a hit on the "
-         "right root (log scale). Circle: float; square: double. A red ring marks misclassified rays or leaks (count "
-         "beside it).</text>\n";
+         "right root (log scale). Circle: float; square: double. A red ring marks misclassified rays (for meshes: "
+         "leaks), count beside it.</text>\n";
     for (std::size_t p = 0; p < families.size(); ++p) {
         int ox = 10 + static_cast<int>(p % columns) * panel_w, oy = top + static_cast<int>(p / columns) * panel_h;
         f << "<g transform='translate(" << ox << "," << oy << ")'>\n";
@@ -170,7 +201,9 @@ void write_svg(const std::string& path, const std::vector<std::string>& families
             else
                 f << "<rect x='" << x - 4.5 << "' y='" << y - 4.5 << "' width='9' height='9' fill='" << c
                   << "' fill-opacity='0.85'/>\n";
-            std::size_t bad = o.misclassified() + o.leaks;
+            // For closed meshes the count that matters is the leaks: rays
+            // through a shared edge may go to either neighbour, not to neither.
+            std::size_t bad = o.rays ? o.leaks : o.misclassified();
             if (bad)
                 f << "<circle cx='" << x << "' cy='" << y << "' r='8' fill='none' stroke='red' stroke-width='1.2'/>"
                   << "<text x='" << x + 9 << "' y='" << y - 6 << "' fill='red' font-size='9'>" << bad << "</text>\n";

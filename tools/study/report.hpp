@@ -18,6 +18,10 @@ void print_family_table(std::ostream& os, const std::string& family, const std::
 void print_group_table(std::ostream& os, const std::vector<std::string>& groups, std::size_t per_group,
                        const std::vector<outcome>& rows);
 
+// One row per formulation and precision, one column per family:
+// "misclassified rays / largest ULP error / ns per test".
+void print_summary_table(std::ostream& os, const std::vector<std::string>& families, const std::vector<outcome>& rows);
+
 void write_csv(const std::string& path, const std::vector<outcome>& rows);
 void write_group_csv(const std::string& path, const std::vector<std::string>& groups, const std::vector<outcome>& rows);
 

@@ -175,6 +175,16 @@ int main(int argc, char** argv) {
     measure_precision<double>(s, rows, far_groups, families);
     rows = ordered(rows);
 
+    std::vector<std::string> sphere_names, other_names;
+    for (const auto& f : families)
+        (f.first.rfind("plane", 0) == 0 || f.first.rfind("tri", 0) == 0 ? other_names : sphere_names).push_back(f.first);
+    text << "\n## Summary\n\nEach cell: misclassified queries (false hits + false misses) / largest error in ULPs of a "
+            "hit on the right root / median ns per test; for closed meshes also the leaks (rays that hit none of the "
+            "triangles around the edge or corner they cross).\n\nSpheres:\n";
+    print_summary_table(text, sphere_names, rows);
+    text << "\nPlanes and triangles:\n";
+    print_summary_table(text, other_names, rows);
+    text << "\n## Tables by family\n";
     for (const auto& [name, description] : families) {
         print_family_table(text, name, description, rows);
         if (name == "far") {
