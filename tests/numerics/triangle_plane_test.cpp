@@ -65,3 +65,27 @@ TEST_CASE_TEMPLATE("plane formulations classify parallel and nearly parallel ray
         }
     }
 }
+
+TEST_CASE_TEMPLATE("every triangle formulation misses degenerate triangles and rays in the plane", T, RT_SCALARS) {
+    for (const auto& fam : triangle_families<T>(small_cases())) {
+        if (fam.name != "tri stiff") continue;
+        auto refs = references(fam);
+        for (const auto& entry : fm::triangle_formulations()) {
+            std::size_t wrong = 0, checked = 0;
+            for (std::size_t i = 0; i < fam.queries.size(); ++i) {
+                const std::string& group = fam.group_names[static_cast<std::size_t>(fam.group[i])];
+                if (group != "degenerate" && group != "ray in the plane" && group != "invalid input") continue;
+                const auto& q = fam.queries[i];
+                ++checked;
+                wrong += entry.template fn<T>()(q.r, q.shape, q.range).has_value() != refs[i].hit;
+            }
+            REQUIRE(checked > 0);
+            CHECK_MESSAGE(wrong == 0, entry.name << " " << rt::test::scalar_name<T>()
+                                                 << ": a triangle with collinear corners has no plane, a ray lying in "
+                                                    "the triangle's plane meets it in a segment, not a point, and NaN "
+                                                    "input describes no ray: all three are misses (a hit exactly at "
+                                                    "tmax or at t = 0 is outside the open range); wrong answers "
+                                                 << wrong << " of " << checked);
+        }
+    }
+}
