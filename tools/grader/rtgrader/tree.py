@@ -105,6 +105,15 @@ def protect(folder):
             os.chmod(path, 0o700)
 
 
+def protect_repository(repo):
+    """As root: the instructor repository's private folders are root's alone
+    too, so a submission cannot read them by their absolute path."""
+    for rel in PRIVATE_DIRS:
+        path = os.path.join(repo, rel)
+        if os.path.isdir(path) and os.stat(path).st_mode & 0o077:
+            os.chmod(path, 0o700)
+
+
 class Tree:
     def __init__(self, folder, repo=None):
         self.folder = os.path.abspath(folder)
@@ -127,6 +136,7 @@ class Tree:
             changed = sync_source(self.repo, self.source)
             if sandbox.is_root():
                 protect(self.folder)
+                protect_repository(self.repo)
             old = None
             if os.path.isfile(self.state_path):
                 with open(self.state_path) as f:
