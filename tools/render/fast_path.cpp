@@ -49,6 +49,8 @@ namespace rt::render_tool {
 namespace {
 
 constexpr int W = packet_width;
+constexpr int tile_w = 8, tile_h = W / tile_w;  // the pixels of one packet
+static_assert(tile_w * tile_h == W, "a packet is a whole tile");
 
 enum class sphere_mode { none, plain, robust };
 
@@ -107,6 +109,21 @@ inline T compensated_c(T fx, T fy, T fz, T r) {
     return ((xx - rr) + (yy + zz)) + low;
 }
 
+// Just the discriminant of sphere_t (the same formula, so the same sign):
+// negative means the ray passes the sphere by. Used to skip a sphere that
+// no ray of a packet comes near, which at large N is almost every sphere.
+template <class T, sphere_mode SM>
+inline T sphere_discriminant(T fx, T fy, T fz, T c, T rr, T dx, T dy, T dz, T a, T inv_a) {
+    const T half_b = fx * dx + fy * dy + fz * dz;
+    if constexpr (SM == sphere_mode::plain) {
+        return half_b * half_b - a * c;
+    } else {
+        const T m = half_b * inv_a;
+        const T gx = fx - m * dx, gy = fy - m * dy, gz = fz - m * dz;
+        return a * (rr - (gx * gx + gy * gy + gz * gz));
+    }
+}
+
 // One sphere against one ray, with f = origin - centre, c = |f|^2 - r^2,
 // a = |d|^2. Returns the nearest t > tmin, or infinity.
 template <class T, sphere_mode SM>
@@ -132,7 +149,7 @@ inline T sphere_t(T fx, T fy, T fz, T c, T rr, T dx, T dy, T dz, T a, T inv_a, T
         far = r1 < r2 ? r2 : r1;
     }
     const T t = near > tmin ? near : far;
-    return (disc >= T(0)) & (t > tmin) ? t : infinity<T>;
+    return ((disc >= T(0)) & (t > tmin)) ? t : infinity<T>;
 }
 
 // One plane against one ray; num = n . (point - origin).
@@ -153,7 +170,7 @@ inline T triangle_t(T sx, T sy, T sz, T qx, T qy, T qz, T e1x, T e1y, T e1z, T e
     const T v = (dx * qx + dy * qy + dz * qz) * inv_det;
     const T t = (e2x * qx + e2y * qy + e2z * qz) * inv_det;
     // Edges count as inside; NaN (a degenerate triangle) fails every test.
-    return (u >= T(0)) & (v >= T(0)) & (u + v <= T(1)) & (t > tmin) ? t : infinity<T>;
+    return ((u >= T(0)) & (v >= T(0)) & (u + v <= T(1)) & (t > tmin)) ? t : infinity<T>;
 }
 
 // The closest hit of each ray of a packet: tbest[k] and object[k] (-1 for
@@ -172,9 +189,15 @@ void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, i
         best[k] = -1;
     }
     auto keep = [&](int k, T t, I id) {
-        const bool closer = t < best_t[k];
-        best_t[k] = closer ? t : best_t[k];
-        best[k] = closer ? id : best[k];
+        const T old_t = best_t[k];
+        const I old = best[k];
+        const bool closer = t < old_t;
+        best_t[k] = closer ? t : old_t;
+        // The object number is selected with a mask, not with ?: : gcc 12
+        // turns "closer ? id : best[k]" into a conditional store, which it
+        // vectorises with a test and a branch that mispredicts all the time.
+        const I mask = -I(closer);
+        best[k] = (old & ~mask) | (id & mask);
     };
     if constexpr (SM != sphere_mode::none) {
         for (size_t i = 0; i < s.sphere_count; ++i) {
@@ -182,9 +205,25 @@ void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, i
             if constexpr (CommonOrigin) {
                 const T fx = p.ox[0] - cx, fy = p.oy[0] - cy, fz = p.oz[0] - cz;
                 const T c = SM == sphere_mode::plain ? fx * fx + fy * fy + fz * fz - rr : compensated_c(fx, fy, fz, r);
+                // Cull first: the full test (square root, division, the
+                // update of the closest hit) only when some ray of the
+                // packet passes within the sphere's radius.
+                int near_any = 0;
+                for (int k = 0; k < W; ++k)
+                    near_any |= int(sphere_discriminant<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], a[k],
+                                                               inv_a[k]) >= T(0));
+                if (!near_any) continue;
                 for (int k = 0; k < W; ++k)
                     keep(k, sphere_t<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], a[k], inv_a[k], tmin), I(i));
             } else {
+                int near_any = 0;
+                for (int k = 0; k < W; ++k) {
+                    const T fx = p.ox[k] - cx, fy = p.oy[k] - cy, fz = p.oz[k] - cz;
+                    const T c = fx * fx + fy * fy + fz * fz - rr;  // only the plain form's sign test uses it
+                    near_any |= int(sphere_discriminant<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], a[k],
+                                                               inv_a[k]) >= T(0));
+                }
+                if (!near_any) continue;
                 for (int k = 0; k < W; ++k) {
                     const T fx = p.ox[k] - cx, fy = p.oy[k] - cy, fz = p.oz[k] - cz;
                     const T c =
@@ -300,11 +339,16 @@ struct context {
         for (const auto& t : d.world.triangles) material_of.push_back(t.material);
     }
 
-    // The packet of rays through pixels col0 .. col0+W-1 of a row (columns
-    // past the right edge repeat the last pixel; their results are dropped).
-    void fill(packet<T>& p, int col0, int row) const {
+    // The packet of rays through a tile of tile_w x tile_h pixels with its
+    // top-left corner at (col0, row0): lane k is pixel (col0 + k % tile_w,
+    // row0 + k / tile_w). A square-ish tile keeps the rays close together,
+    // so more spheres miss all of them and are skipped. Pixels past the
+    // image's edge repeat the edge pixel; their results are dropped.
+    void fill(packet<T>& p, int col0, int row0) const {
         for (int k = 0; k < W; ++k) {
-            const ray<T> r = camera.primary_ray(std::min(col0 + k, camera.width() - 1), row);
+            const int col = std::min(col0 + k % tile_w, camera.width() - 1);
+            const int row = std::min(row0 + k / tile_w, camera.height() - 1);
+            const ray<T> r = camera.primary_ray(col, row);
             p.ox[k] = r.origin.x, p.oy[k] = r.origin.y, p.oz[k] = r.origin.z;
             p.dx[k] = r.direction.x, p.dy[k] = r.direction.y, p.dz[k] = r.direction.z;
         }
@@ -333,16 +377,17 @@ struct context {
     }
 };
 
-// Runs body(row) for every row on every core; rethrows the first exception.
+// Runs body(i) for i in [0, count) (rows of tiles) on every core; rethrows
+// the first exception.
 template <class F>
-void for_each_row(int height, F&& body) {
+void for_each_row(int count, F&& body) {
     std::atomic<int> next{0};
     std::atomic<bool> stop{false};
     std::exception_ptr error;
     std::mutex error_mutex;
     auto worker = [&] {
         try {
-            for (int row; !stop && (row = next.fetch_add(1)) < height;) body(row);
+            for (int row; !stop && (row = next.fetch_add(1)) < count;) body(row);
         } catch (...) {
             std::lock_guard<std::mutex> lock(error_mutex);
             if (!error) error = std::current_exception();
@@ -361,7 +406,8 @@ image render_with(const scene_description& d, int width, int height, long& rays)
     const context<T> ctx(d, width, height);
     image img(width, height);
     std::atomic<long> shadow_rays{0};
-    for_each_row(height, [&](int row) {
+    for_each_row((height + tile_h - 1) / tile_h, [&](int tile_row) {
+        const int row0 = tile_row * tile_h;
         long shadows = 0;
         ch06::occlusion_test<T> occluded;
         if constexpr (Lights)
@@ -372,11 +418,13 @@ image render_with(const scene_description& d, int width, int height, long& rays)
         packet<T> p;
         alignas(64) T t[W];
         alignas(64) index_t<T> object[W];
-        for (int col0 = 0; col0 < width; col0 += W) {
-            ctx.fill(p, col0, row);
+        for (int col0 = 0; col0 < width; col0 += tile_w) {
+            ctx.fill(p, col0, row0);
             ctx.template trace<SM, Planes, Tris>(p, t, object);
-            for (int k = 0; k < W && col0 + k < width; ++k) {
-                color& out = img.at(col0 + k, row);
+            for (int k = 0; k < W; ++k) {
+                const int col = col0 + k % tile_w, row = row0 + k / tile_w;
+                if (col >= width || row >= height) continue;
+                color& out = img.at(col, row);
                 if (object[k] < 0) {
                     out = d.world.background;
                     continue;
@@ -403,21 +451,45 @@ primary_hits trace_with(const scene_description& d, int width, int height) {
     primary_hits hits;
     hits.object.assign(size_t(width) * size_t(height), -1);
     hits.t.assign(size_t(width) * size_t(height), 0);
-    for_each_row(height, [&](int row) {
+    for_each_row((height + tile_h - 1) / tile_h, [&](int tile_row) {
+        const int row0 = tile_row * tile_h;
         packet<T> p;
         alignas(64) T t[W];
         alignas(64) index_t<T> object[W];
-        for (int col0 = 0; col0 < width; col0 += W) {
-            ctx.fill(p, col0, row);
+        for (int col0 = 0; col0 < width; col0 += tile_w) {
+            ctx.fill(p, col0, row0);
             ctx.template trace<SM, Planes, Tris>(p, t, object);
-            for (int k = 0; k < W && col0 + k < width; ++k) {
-                size_t i = size_t(row) * size_t(width) + size_t(col0 + k);
+            for (int k = 0; k < W; ++k) {
+                const int col = col0 + k % tile_w, row = row0 + k / tile_w;
+                if (col >= width || row >= height) continue;
+                size_t i = size_t(row) * size_t(width) + size_t(col);
                 hits.object[i] = int(object[k]);
                 hits.t[i] = (long double)t[k];
             }
         }
     });
     return hits;
+}
+
+template <class T, sphere_mode SM, bool Planes, bool Tris>
+long count_with(const scene_description& d, int width, int height) {
+    const context<T> ctx(d, width, height);
+    std::atomic<long> hits{0};
+    for_each_row((height + tile_h - 1) / tile_h, [&](int tile_row) {
+        const int row0 = tile_row * tile_h;
+        packet<T> p;
+        alignas(64) T t[W];
+        alignas(64) index_t<T> object[W];
+        long row_hits = 0;
+        for (int col0 = 0; col0 < width; col0 += tile_w) {
+            ctx.fill(p, col0, row0);
+            ctx.template trace<SM, Planes, Tris>(p, t, object);
+            for (int k = 0; k < W; ++k)
+                row_hits += object[k] >= 0 && col0 + k % tile_w < width && row0 + k / tile_w < height;
+        }
+        hits += row_hits;
+    });
+    return hits.load();
 }
 
 // Calls f(SM, Planes, Tris, Lights) with each choice as a compile-time
@@ -461,6 +533,16 @@ primary_hits trace_primary(const scene_description& d, const scene_plan& plan, i
         using T = decltype(type);
         return dispatch(mode_of(plan), plan.planes > 0, plan.triangles > 0, false, [&](auto SM, auto P, auto Tr, auto) {
             return trace_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value>(d, width, height);
+        });
+    };
+    return plan.prec == precision::single ? run(float{}) : run(double{});
+}
+
+long count_primary_hits(const scene_description& d, const scene_plan& plan, int width, int height) {
+    auto run = [&](auto type) {
+        using T = decltype(type);
+        return dispatch(mode_of(plan), plan.planes > 0, plan.triangles > 0, false, [&](auto SM, auto P, auto Tr, auto) {
+            return count_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value>(d, width, height);
         });
     };
     return plan.prec == precision::single ? run(float{}) : run(double{});

@@ -1,0 +1,361 @@
+// rt-bench — throughput of the specialised renderer against the general one
+// and, when Intel Embree is installed, against Embree.
+//
+//   rt-bench [--quick] [--runs R] [--size S]
+//
+// prints, at S x S pixels (default 512) with one primary ray per pixel on
+// every core:
+//   1. scenes of N spheres (N = 1 ... 4096): rays per second of the
+//      specialised path and of the general path (full render with shading),
+//      their ratio; then primary-hit-only throughput of the brute-force
+//      kernel next to Embree's rtcIntersect1 and rtcIntersect16 on the same
+//      spheres, and the ratios;
+//   2. mixed scenes: the cost of each feature (planes, triangles, lights and
+//      shadow rays) on top of spheres only;
+//   3. how the time scales with the number of pixels.
+// Each figure is the median of R runs (default 3). Timings are reported,
+// never asserted: this is not a test.
+#include "fast_path.hpp"
+#include "general_path.hpp"
+#include "scene_plan.hpp"
+
+#include "common/render.hpp"
+#include "common/scene_file.hpp"
+#include "common/stub.hpp"
+#include "common/timing.hpp"
+
+#include <CLI/CLI.hpp>
+
+#ifdef RT_HAVE_EMBREE
+#include <embree3/rtcore.h>
+#endif
+
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <random>
+#include <thread>
+#include <vector>
+
+using namespace rt;
+using namespace rt::render_tool;
+
+namespace {
+
+int runs = 3;
+
+// N spheres scattered in a box in front of the camera. Their radius shrinks
+// like N^(-1/3), so the spheres cover a similar share of the picture at
+// every N and the figures compare the cost of N, not of coverage.
+scene_description sphere_scene(int n, int size, unsigned seed = 12345) {
+    scene_description d;
+    d.source = "generated";
+    d.camera.eye = {0, 0, 0};
+    d.camera.look_at = {0, 0, -1};
+    d.camera.fov_degrees = 60;
+    d.camera.width = d.camera.height = size;
+    d.world.materials = {material{color(0.8f, 0.3f, 0.2f)}, material{color(0.2f, 0.5f, 0.8f)}};
+    d.material_names = {"", ""};
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> x(-4, 4), y(-3.5, 3.5), z(-14, -5);
+    const double radius = 1.6 / std::cbrt(double(n));
+    for (int i = 0; i < n; ++i) d.world.spheres.push_back({vec3d(x(random), y(random), z(random)), radius, i % 2});
+    return d;
+}
+
+// Spheres, then optionally a floor, a triangle mesh (a folded strip of
+// `triangles` triangles standing on the floor) and two lights.
+scene_description mixed_scene(int spheres, bool plane, int triangles, bool lights, int size) {
+    scene_description d = sphere_scene(spheres, size);
+    d.world.materials.push_back(material{color(0.7f, 0.7f, 0.7f), color(0), 32, true, color(0.3f, 0.3f, 0.3f)});
+    if (plane) d.world.planes.push_back({vec3d(0, -4, 0), vec3d(0, 1, 0), 2});
+    for (int i = 0; i < triangles; ++i) {
+        // A zig-zag strip across the back of the scene.
+        const double x0 = -6 + 12.0 * (i / 2) / std::max(1, triangles / 2), w = 12.0 / std::max(1, triangles / 2);
+        const double z0 = -15 + (i % 4 < 2 ? 0.0 : 0.6);
+        if (i % 2 == 0)
+            d.world.triangles.push_back({vec3d(x0, -4, z0), vec3d(x0 + w, -4, z0), vec3d(x0, 2, z0 - 0.5), 1});
+        else
+            d.world.triangles.push_back({vec3d(x0 + w, -4, z0), vec3d(x0 + w, 2, z0 - 0.5), vec3d(x0, 2, z0 - 0.5), 0});
+    }
+    if (lights) {
+        d.world.lights.push_back({vec3d(-6, 8, 2), color(150, 150, 140)});
+        d.world.lights.push_back({vec3d(6, 5, 0), color(60, 60, 80)});
+    }
+    return d;
+}
+
+// Median seconds of `runs` calls of f.
+double median_seconds(const std::function<void()>& f, int repeat) {
+    std::vector<double> samples;
+    for (int r = 0; r < repeat; ++r) {
+        stopwatch sw;
+        f();
+        samples.push_back(sw.seconds());
+    }
+    return summarize(samples).median;
+}
+
+struct render_figures {
+    double seconds = 0;
+    long rays = 0;
+    double mrays() const { return double(rays) / seconds / 1e6; }
+};
+
+render_figures time_fast(const scene_description& d, int size) {
+    const scene_plan plan = make_plan(d, 1e-3, std::nullopt);
+    render_figures f;
+    f.seconds = median_seconds([&] { render_fast(d, plan, size, size, f.rays); }, runs);
+    return f;
+}
+
+render_figures time_general(const scene_description& d, int size, int repeat) {
+    render_figures f;
+    f.seconds = median_seconds([&] { render_general(d, precision::double_, size, size, f.rays); }, repeat);
+    return f;
+}
+
+#ifdef RT_HAVE_EMBREE
+// The same spheres in Embree: its point-sphere geometry (RTC_GEOMETRY_TYPE_SPHERE_POINT)
+// in a BVH built at high quality. Rays are the pinhole camera's primary rays
+// in float, with tnear = 1 (the image plane) like the course's.
+class embree_scene {
+public:
+    explicit embree_scene(const scene_description& d) {
+        device_ = rtcNewDevice("threads=2");
+        scene_ = rtcNewScene(device_);
+        rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+        RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+        float* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
+                                                               4 * sizeof(float), d.world.spheres.size()));
+        for (size_t i = 0; i < d.world.spheres.size(); ++i) {
+            const auto& s = d.world.spheres[i];
+            v[4 * i + 0] = float(s.center.x), v[4 * i + 1] = float(s.center.y), v[4 * i + 2] = float(s.center.z);
+            v[4 * i + 3] = float(s.radius);
+        }
+        rtcCommitGeometry(g);
+        rtcAttachGeometry(scene_, g);
+        rtcReleaseGeometry(g);
+        stopwatch sw;
+        rtcCommitScene(scene_);
+        build_seconds = sw.seconds();
+    }
+    ~embree_scene() {
+        rtcReleaseScene(scene_);
+        rtcReleaseDevice(device_);
+    }
+    embree_scene(const embree_scene&) = delete;
+    embree_scene& operator=(const embree_scene&) = delete;
+
+    static bool spheres_supported() {
+        RTCDevice dev = rtcNewDevice(nullptr);
+        bool ok = dev && rtcGetDeviceProperty(dev, RTC_DEVICE_PROPERTY_POINT_GEOMETRY_SUPPORTED) != 0;
+        if (dev) rtcReleaseDevice(dev);
+        return ok;
+    }
+
+    // Hits over the whole image with one rtcIntersect1 per ray.
+    long single(const pinhole_camera<float>& cam) const {
+        std::atomic<long> hits{0};
+        rows(cam.height, [&](int row) {
+            RTCIntersectContext context;
+            rtcInitIntersectContext(&context);
+            long h = 0;
+            for (int col = 0; col < cam.width; ++col) {
+                const ray<float> r = cam.primary_ray(col, row);
+                RTCRayHit rh;
+                rh.ray.org_x = r.origin.x, rh.ray.org_y = r.origin.y, rh.ray.org_z = r.origin.z;
+                rh.ray.dir_x = r.direction.x, rh.ray.dir_y = r.direction.y, rh.ray.dir_z = r.direction.z;
+                rh.ray.tnear = 1.0f, rh.ray.tfar = infinity<float>, rh.ray.time = 0, rh.ray.mask = ~0u;
+                rh.ray.id = 0, rh.ray.flags = 0;
+                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+                rtcIntersect1(scene_, &context, &rh);
+                h += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+            }
+            hits += h;
+        });
+        return hits.load();
+    }
+
+    // Hits over the whole image with one rtcIntersect16 per 4x4 block of pixels
+    // (rows are handed out four at a time).
+    long packets16(const pinhole_camera<float>& cam) const {
+        std::atomic<long> hits{0};
+        rows((cam.height + 3) / 4, [&](int block_row) {
+            RTCIntersectContext context;
+            rtcInitIntersectContext(&context);
+            context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+            long h = 0;
+            for (int col0 = 0; col0 < cam.width; col0 += 4) {
+                alignas(64) RTCRayHit16 rh;
+                alignas(64) int valid[16];
+                for (int k = 0; k < 16; ++k) {
+                    const int col = col0 + k % 4, row = block_row * 4 + k / 4;
+                    valid[k] = col < cam.width && row < cam.height ? -1 : 0;
+                    const ray<float> r = cam.primary_ray(std::min(col, cam.width - 1), std::min(row, cam.height - 1));
+                    rh.ray.org_x[k] = r.origin.x, rh.ray.org_y[k] = r.origin.y, rh.ray.org_z[k] = r.origin.z;
+                    rh.ray.dir_x[k] = r.direction.x, rh.ray.dir_y[k] = r.direction.y, rh.ray.dir_z[k] = r.direction.z;
+                    rh.ray.tnear[k] = 1.0f, rh.ray.tfar[k] = infinity<float>, rh.ray.time[k] = 0;
+                    rh.ray.mask[k] = ~0u, rh.ray.id[k] = 0, rh.ray.flags[k] = 0;
+                    rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+                }
+                rtcIntersect16(valid, scene_, &context, &rh);
+                for (int k = 0; k < 16; ++k) h += valid[k] && rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+            }
+            hits += h;
+        });
+        return hits.load();
+    }
+
+    double build_seconds = 0;
+
+private:
+    RTCDevice device_;
+    RTCScene scene_;
+
+    // body(i) for i in [0, count) on every core, like the renderer's loop.
+    static void rows(int count, const std::function<void(int)>& body) {
+        std::atomic<int> next{0};
+        auto worker = [&] {
+            for (int i; (i = next.fetch_add(1)) < count;) body(i);
+        };
+        std::vector<std::thread> pool;
+        for (int i = 1; i < render_threads(); ++i) pool.emplace_back(worker);
+        worker();
+        for (auto& t : pool) t.join();
+    }
+};
+#endif
+
+void sphere_table(const std::vector<int>& counts, int size) {
+    std::printf("\n1. N spheres, %dx%d, no lights (specialised plan: float, plain sphere test, sphere loop only)\n", size,
+                size);
+    std::printf("   full render (primary rays + colour), Mrays/s:\n");
+    std::printf("   %6s | %12s | %12s | %9s | %10s\n", "N", "specialised", "general", "spec/gen", "cpu ns/ray");
+    for (int n : counts) {
+        const scene_description d = sphere_scene(n, size);
+        const render_figures fast = time_fast(d, size);
+        // The general path pays a std::function call per object and ray: at
+        // large N one run takes seconds, so it is timed once there.
+        const render_figures general = time_general(d, size, n >= 256 ? 1 : runs);
+        std::printf("   %6d | %12.1f | %12.2f | %8.1fx | %10.2f\n", n, fast.mrays(), general.mrays(),
+                    fast.mrays() / general.mrays(), fast.seconds / double(fast.rays) * 1e9 * render_threads());
+        std::fflush(stdout);
+    }
+
+    std::printf("\n   primary hits only (closest hit, no shading), Mrays/s");
+#ifdef RT_HAVE_EMBREE
+    const bool embree = embree_scene::spheres_supported();
+    std::printf(embree ? ", against Embree %d.%d.%d (point spheres, BVH build quality high):\n"
+                       : ": (this Embree has no point/sphere geometry)\n",
+                RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH);
+    if (embree)
+        std::printf("   %6s | %12s | %12s | %12s | %9s | %9s | %10s | %s\n", "N", "brute force", "rtcIntersect1",
+                    "rtcIntersect16", "bf/E1", "bf/E16", "build ms", "hits bf/E1/E16");
+#else
+    const bool embree = false;
+    std::printf(": (Embree not found at configure time: apt-get install libembree-dev and reconfigure)\n");
+#endif
+    if (!embree) std::printf("   %6s | %12s\n", "N", "brute force");
+    for (int n : counts) {
+        const scene_description d = sphere_scene(n, size);
+        const scene_plan plan = make_plan(d, 1e-3, std::nullopt);
+        long ours_hits = 0;
+        const double ours = median_seconds([&] { ours_hits = count_primary_hits(d, plan, size, size); }, runs);
+        const double rays = double(size) * double(size);
+        if (!embree) {
+            std::printf("   %6d | %12.1f\n", n, rays / ours / 1e6);
+            continue;
+        }
+#ifdef RT_HAVE_EMBREE
+        const embree_scene e(d);
+        const pinhole_camera<float> cam(
+            camera_frame<float>::look_at(convert<float>(d.camera.eye), convert<float>(d.camera.look_at), {0, 1, 0}),
+            float(d.camera.fov_degrees), size, size);
+        long hits1 = 0, hits16 = 0;
+        const double single = median_seconds([&] { hits1 = e.single(cam); }, runs);
+        const double packets = median_seconds([&] { hits16 = e.packets16(cam); }, runs);
+        std::printf("   %6d | %12.1f | %12.1f | %12.1f | %8.2fx | %8.2fx | %10.2f | %ld/%ld/%ld\n", n, rays / ours / 1e6,
+                    rays / single / 1e6, rays / packets / 1e6, single / ours, packets / ours, e.build_seconds * 1e3,
+                    ours_hits, hits1, hits16);
+        std::fflush(stdout);
+#endif
+    }
+}
+
+void feature_table(int size) {
+    std::printf("\n2. per-feature cost, 64 spheres, %dx%d (full render; rays = primary + shadow)\n", size, size);
+    std::printf("   %-36s | %9s | %12s | %12s | %12s | %9s\n", "scene", "ms spec", "Mrays/s spec", "cost vs 1st",
+                "Mrays/s gen", "spec/gen");
+    struct row {
+        const char* name;
+        bool plane;
+        int triangles;
+        bool lights;
+    };
+    const row rows[] = {{"spheres only", false, 0, false},
+                        {"+ a plane", true, 0, false},
+                        {"+ a plane + 64 triangles", true, 64, false},
+                        {"+ a plane + 64 triangles + 2 lights", true, 64, true}};
+    double base = 0;
+    for (const row& r : rows) {
+        const scene_description d = mixed_scene(64, r.plane, r.triangles, r.lights, size);
+        const render_figures fast = time_fast(d, size);
+        const render_figures general = time_general(d, size, 1);
+        if (base == 0) base = fast.seconds;
+        std::printf("   %-36s | %9.2f | %12.1f | %11.2fx | %12.2f | %8.1fx\n", r.name, fast.seconds * 1e3, fast.mrays(),
+                    fast.seconds / base, general.mrays(), fast.mrays() / general.mrays());
+        std::fflush(stdout);
+    }
+}
+
+void pixel_table(const std::vector<int>& sizes) {
+    std::printf("\n3. scaling with pixel count, 64 spheres, specialised path, full render\n");
+    std::printf("   %10s | %10s | %9s | %12s | %10s\n", "image", "pixels", "ms", "Mrays/s", "ns/pixel");
+    for (int s : sizes) {
+        const scene_description d = sphere_scene(64, s);
+        const render_figures fast = time_fast(d, s);
+        std::printf("   %4dx%-5d | %10ld | %9.2f | %12.1f | %10.2f\n", s, s, long(s) * s, fast.seconds * 1e3,
+                    fast.mrays(), fast.seconds / double(long(s) * s) * 1e9);
+        std::fflush(stdout);
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    bool quick = false;
+    int size = 512;
+    CLI::App app{"rt-bench: specialised vs general renderer, and brute force vs Embree"};
+    app.add_flag("--quick", quick, "a tiny smoke run (small image, few scenes, one run each)");
+    app.add_option("--runs", runs, "runs per figure (the median is printed)")->check(CLI::Range(1, 50))->capture_default_str();
+    app.add_option("--size", size, "image side in pixels")->check(CLI::Range(8, 4096))->capture_default_str();
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+    std::vector<int> counts = {1, 4, 16, 64, 256, 4096};
+    std::vector<int> sizes = {128, 256, 512, 1024};
+    if (quick) {
+        size = 64;
+        runs = 1;
+        counts = {1, 16};
+        sizes = {32, 64};
+    }
+    std::printf("rt-bench: %dx%d, one primary ray per pixel, %d threads, median of %d run(s)\n", size, size,
+                render_threads(), runs);
+    try {
+        sphere_table(counts, size);
+        feature_table(size);
+        pixel_table(sizes);
+    } catch (const not_implemented& e) {
+        std::fprintf(stderr, "rt-bench: %s\n", e.what());
+        return exit_not_implemented;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "rt-bench: error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
