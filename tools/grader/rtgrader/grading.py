@@ -26,7 +26,8 @@ COMPILER_SHOWN = 3000        # characters of a compiler message
 # Words in a submission that deserve the instructor's eye (never shown as a score change).
 SUSPICIOUS = ["getenv", "environ", "RT_GRADER", "/proc", "fork", "exec", "system(", "popen", "_exit",
               "quick_exit", "abort(", "__attribute__", "asm", "#include \"/", "#include </", "solutions/",
-              "hidden", "signal(", "setrlimit", "socket", "ptrace", "dlsym", "results.json", "incbin"]
+              "hidden", "signal(", "setrlimit", "socket", "ptrace", "dlsym", "results.json", "incbin",
+              "extern \"C\"", "doctest", "#pragma", "weak"]
 
 
 @dataclass
