@@ -232,6 +232,7 @@ fi
 # The submission's code runs as unprivileged users: nothing of the instructor's
 # source (solutions, hidden tests) may be readable by them.
 chmod 700 "$source_dir"
+chmod o+x "$root"      # ... but they must reach the grading folder's public copy
 build_dir="${RT_GRADER_BUILD_DIR:-$root/grader}"
 python3 "$source_dir/tools/grader/grade" --prepare-only --build-dir "$build_dir" \\
         ${RT_GRADER_CHAPTERS:+--chapters "$RT_GRADER_CHAPTERS"}
