@@ -208,10 +208,14 @@ inline std::optional<float> sphere_float_in_double_word(const ray<float>& ray_, 
 //   * the perpendicular vector enters through the cross product f x d (by
 //     Lagrange's identity |f|^2 |d|^2 - (f.d)^2 = |f x d|^2, so the
 //     discriminant is a r^2 - |f x d|^2), each component a difference of
-//     exact FMA products;
-//   * the discriminant is a double-word sum, and c = f.f - r^2 is summed
-//     from its exact pieces in triple precision (detail::exact_c).
-// The roots come from the stable pair, so each is within a few ULPs.
+//     exact products (two_prod: an FMA, or Dekker's product);
+//   * the discriminant is a double-word sum; c = f.f - r^2 is one too, and
+//     when it cancels more than 20 bits (an origin on or near the surface)
+//     it is summed again from its exact pieces (detail::exact_c);
+//   * for float data, a discriminant that cancels more than 20 bits (a ray
+//     grazing a huge sphere) sends the test to double-double.
+// The roots come from the stable pair, so each is within a few ULPs. The
+// price is about fifteen times the plain form's time (see the study).
 template <class T>
 std::optional<T> sphere_compensated(const ray<T>& ray_, const sphere<T>& s, const interval<T>& range) {
     using dw = double_word<T>;
@@ -268,8 +272,10 @@ namespace detail {
 // Float inputs, double arithmetic: a product of two floats is exact in
 // double and a difference of two floats almost always is, so f, f x d and
 // c lose (almost) nothing; the roots are rounded to float once, at the end.
-// Only c can still cancel (seen from 1e-3 above a sphere of radius 1e7,
-// f.f and r^2 share 33 bits); that case alone takes the exact path.
+// Two quantities can still cancel beyond double's reserve: c (seen from
+// 1e-3 above a sphere of radius 1e7, f.f and r^2 share 33 bits) and the
+// discriminant of a grazing ray. Only those rays take a slower exact path,
+// so the common case costs little more than the plain float form.
 inline std::optional<float> sphere_in_double(const ray<float>& ray_, const sphere<float>& s,
                                              const interval<float>& range) {
     if (!sphere_inputs_valid(ray_, s)) return std::nullopt;
