@@ -111,9 +111,9 @@ class Grader:
         os.makedirs(out_dir, exist_ok=True)
         work = tempfile.mkdtemp(prefix="rt-grade-")
         os.chmod(work, 0o711)
-        # A worker slot no other grading (in this process or another) holds:
-        # its sandbox users are this grading's alone.
-        with sandbox.worker_slot(os.path.join(self.tree.folder, "slots")) as slot:
+        # A worker slot no other grading on this machine holds (in this
+        # process or another): its sandbox users are this grading's alone.
+        with sandbox.worker_slot(sandbox.slots_folder(self.tree.folder)) as slot:
             user = sandbox.sandbox_user(slot) if sandbox.is_root() else None
             try:
                 results, notes = self._grade_in(submission, out_dir, work, user, slot)
@@ -180,7 +180,7 @@ class Grader:
                 if link_errors[cid]:
                     problems[cid] = "linking failed:\n" + self._tidy(link_errors[cid], chapters[cid], work)
                 else:
-                    self._take_executables(chapters[cid], os.path.join(work, cid))
+                    self._take_executables(chapters[cid], os.path.join(work, "bin", cid))
         ready = [cid for cid in ready if cid not in problems]
 
         # 3. Run the tests and the render of every chapter that built.
@@ -229,7 +229,7 @@ class Grader:
             original = os.path.normpath(os.path.join(ch["chapter_dir"], ex))
             args = [src if os.path.normpath(a) == original else a for a in args]
             args[args.index("-o") + 1] = obj
-            limits = Limits(wall_seconds=120, cpu_seconds=120, memory_bytes=4096 * MiB,
+            limits = Limits(wall_seconds=60, cpu_seconds=60, memory_bytes=4096 * MiB,
                             file_bytes=256 * MiB, processes=64)
             outcome = sandbox.run_limited(args, folder, limits, os.path.join(logs, f"{ch['id']}-{ex}.compile"),
                                           user=user, output_cap=64 * 1024)
@@ -251,7 +251,11 @@ class Grader:
         return trim(text, COMPILER_SHOWN)
 
     def _take_executables(self, ch, folder):
-        """Copies the freshly linked executables out of the build tree."""
+        """Copies the freshly linked executables out of the build tree, into a
+        folder the submission's user cannot write: a test must not be able to
+        swap the next test's program for one that forges its report."""
+        make_dir(os.path.dirname(folder), None, 0o711)
+        make_dir(folder, None, 0o711)
         wanted = {"public_tests": 0o755, "hidden_tests": 0o711, "program": 0o755}
         for key, mode in wanted.items():
             if ch.get(key):
@@ -266,7 +270,7 @@ class Grader:
             cases = [n for n in self._names_of(ch["id"]) if n[1] == kind]
             if not cases:
                 continue
-            exe = os.path.join(folder, f"{kind}_tests")
+            exe = os.path.join(os.path.dirname(folder), "bin", ch["id"], f"{kind}_tests")
             probe = self._probe(exe, folder, logs, user)
             for name, _, cid, case in cases:
                 if probe:
@@ -327,7 +331,8 @@ class Grader:
                                memory_bytes=limits.memory_bytes, file_bytes=64 * MiB,
                                processes=limits.processes + cores)
         image = os.path.join(folder, "render.png")
-        outcome = sandbox.run_limited([os.path.join(folder, "program"), "--out", image], folder, render_limits,
+        program = os.path.join(os.path.dirname(folder), "bin", ch["id"], "program")
+        outcome = sandbox.run_limited([program, "--out", image], folder, render_limits,
                                       os.path.join(logs, "render"), user=user)
         said = trim(_clean_doctest_output(outcome.output), 1000)
         if outcome.returncode == 3:

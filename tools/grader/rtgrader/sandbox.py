@@ -20,6 +20,7 @@ import pwd
 import resource
 import secrets
 import signal
+import stat
 import subprocess
 import threading
 import time
@@ -67,6 +68,20 @@ def sandbox_user(slot, lane=0):
                            check=True, capture_output=True)
             entry = pwd.getpwnam(name)
     return entry.pw_uid, entry.pw_gid
+
+
+def slots_folder(tree_folder):
+    """Where slot locks live: machine-wide as root (the sandbox users are
+    machine-wide), next to the grading tree otherwise."""
+    if is_root():
+        folder = "/tmp/rt-grader-slots"
+        os.makedirs(folder, mode=0o700, exist_ok=True)
+        info = os.lstat(folder)
+        if info.st_uid != 0 or not stat.S_ISDIR(info.st_mode):
+            raise SystemExit(f"grader: {folder} is not root's own folder; remove it")
+        os.chmod(folder, 0o700)
+        return folder
+    return os.path.join(tree_folder, "slots")
 
 
 @contextmanager
