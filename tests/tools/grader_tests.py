@@ -24,7 +24,7 @@ REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 GRADE = os.path.join(REPO, "tools", "grader", "grade")
 FIXTURES = os.path.join(REPO, "tests", "fixtures", "adversarial")
 GRADING_TIME_LIMIT = 300          # seconds: grading must end well before this
-TEST_LIMITS = ["--timeout", "2", "--render-timeout", "5"]
+TEST_LIMITS = ["--timeout", "3", "--render-timeout", "20"]
 
 failures = []
 
