@@ -423,7 +423,9 @@ def _hidden_feedback(text):
     for line in text.splitlines():
         s = line.strip()
         if s.startswith("logged:"):
-            keep.append(s[len("logged:"):].strip())
+            message = s[len("logged:"):].strip()
+            if " := " not in message:    # CAPTURE(x) would print a value: never for hidden tests
+                keep.append(message)
         elif "THREW exception:" in s or "threw exception:" in s:
             keep.append("the test threw an exception: " + s.split("exception:", 1)[1].strip())
         elif "CRASHED" in s:
