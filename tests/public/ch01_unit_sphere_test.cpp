@@ -10,13 +10,7 @@ using namespace rt;
 using rt::ch01::intersect_unit_sphere;
 using rt::test::close;
 using rt::test::describe;
-
-namespace {
-template <class T>
-interval<T> everything_ahead() {
-    return {T(0), infinity<T>};
-}
-}  // namespace
+using rt::test::everything_ahead;
 
 TEST_CASE_TEMPLATE("a ray that passes beside the sphere misses it", T, RT_SCALARS) {
     // The ray runs parallel to z at height y = 2: it never comes closer than 2 to the origin.

@@ -14,13 +14,10 @@ using namespace rt;
 using rt::ch02::intersect_sphere;
 using rt::test::close;
 using rt::test::describe;
+using rt::test::describe_hit;
+using rt::test::everything_ahead;
 
 namespace {
-
-template <class T>
-interval<T> everything_ahead() {
-    return {T(0), infinity<T>};
-}
 
 // A sphere of radius 2 centred at (1, 2, -3): away from the origin, not unit
 // size, so a formula that forgets the centre or the radius shows it.
@@ -29,17 +26,6 @@ sphere<T> off_centre_sphere() {
     return {{T(1), T(2), T(-3)}, T(2)};
 }
 
-template <class T>
-std::string describe(const std::optional<hit_record<T>>& hit) {
-    if (!hit) return "a miss (std::nullopt)";
-    return rt::test::describe(std::optional<T>(hit->t)) + ", point " + rt::test::describe(hit->point) +
-           ", normal " + rt::test::describe(hit->normal);
-}
-
-template <class T>
-bool close(const vec3<T>& a, const vec3<T>& b) {
-    return rt::test::close(a.x, b.x) && rt::test::close(a.y, b.y) && rt::test::close(a.z, b.z);
-}
 
 }  // namespace
 
@@ -50,7 +36,7 @@ TEST_CASE_TEMPLATE("a ray that passes beside the sphere misses it", T, RT_SCALAR
     CHECK_MESSAGE(!hit.has_value(),
                   "this ray passes 3 units from the centre of a sphere of radius 2: the discriminant is negative, "
                   "there is no real root, and the answer must be a miss; got "
-                      << describe(hit));
+                      << describe_hit(hit));
 }
 
 TEST_CASE_TEMPLATE("a ray through the centre hits the near side first", T, RT_SCALARS) {
@@ -63,7 +49,7 @@ TEST_CASE_TEMPLATE("a ray through the centre hits the near side first", T, RT_SC
     CHECK_MESSAGE(close(hit->t, T(6)),
                   "the roots are t = 6 (entering) and t = 10 (leaving); the surface we see is the nearer root, "
                   "t = 6. Got "
-                      << describe(hit));
+                      << describe_hit(hit));
 }
 
 TEST_CASE_TEMPLATE("a tangent ray touches the sphere once", T, RT_SCALARS) {
@@ -73,7 +59,7 @@ TEST_CASE_TEMPLATE("a tangent ray touches the sphere once", T, RT_SCALARS) {
     REQUIRE_MESSAGE(hit.has_value(),
                     "a tangent ray has a discriminant of exactly zero: one (double) root, which is a hit. "
                     "Test 'discriminant < 0' for a miss, not 'discriminant <= 0'");
-    CHECK_MESSAGE(close(hit->t, T(8)), "the tangent point (3,2,-3) is at t = 8; got " << describe(hit));
+    CHECK_MESSAGE(close(hit->t, T(8)), "the tangent point (3,2,-3) is at t = 8; got " << describe_hit(hit));
 }
 
 TEST_CASE_TEMPLATE("a sphere behind the ray is not hit", T, RT_SCALARS) {
@@ -83,7 +69,7 @@ TEST_CASE_TEMPLATE("a sphere behind the ray is not hit", T, RT_SCALARS) {
     CHECK_MESSAGE(!hit.has_value(),
                   "both roots are negative (t = -10 and t = -6): the sphere is behind the ray's origin, and a "
                   "sphere behind the camera must not show up. Only t inside (tmin, tmax) counts; got "
-                      << describe(hit));
+                      << describe_hit(hit));
 }
 
 TEST_CASE_TEMPLATE("a ray starting inside the sphere hits the far root", T, RT_SCALARS) {
@@ -95,7 +81,7 @@ TEST_CASE_TEMPLATE("a ray starting inside the sphere hits the far root", T, RT_S
     CHECK_MESSAGE(close(hit->t, T(2)),
                   "the ray starts inside the sphere: the nearer root (t = -2) is behind it, so the hit in front "
                   "of the origin is the far root, t = 2. Got "
-                      << describe(hit));
+                      << describe_hit(hit));
 }
 
 TEST_CASE_TEMPLATE("a non-unit direction scales t but not the hit point", T, RT_SCALARS) {
@@ -106,9 +92,9 @@ TEST_CASE_TEMPLATE("a non-unit direction scales t but not the hit point", T, RT_
     CHECK_MESSAGE(close(hit->t, T(1.5)),
                   "with direction (0,0,-4) the hit point (1,2,-1) is reached at t = 1.5. The direction is not "
                   "unit length here: a = d . d = 16, not 1, and it must stay in the quadratic. Got "
-                      << describe(hit));
+                      << describe_hit(hit));
     CHECK_MESSAGE(close(hit->point, vec3<T>(1, 2, -1)),
-                  "whatever the direction's length, the ray meets the sphere at (1,2,-1); got " << describe(hit));
+                  "whatever the direction's length, the ray meets the sphere at (1,2,-1); got " << describe_hit(hit));
 }
 
 TEST_CASE_TEMPLATE("the centre and radius are part of the equation", T, RT_SCALARS) {
@@ -123,7 +109,7 @@ TEST_CASE_TEMPLATE("the centre and radius are part of the equation", T, RT_SCALA
     CHECK_MESSAGE(close(hit->t, T(4)),
                   "the origin is 6 from the centre along a unit direction, so the ray enters at t = 6 - R = 4. "
                   "Substitute r(t) into |p - C|^2 = R^2 with this sphere's C and R. Got "
-                      << describe(hit));
+                      << describe_hit(hit));
 }
 
 TEST_CASE_TEMPLATE("the normal is the outward unit vector (P - C) / r", T, RT_SCALARS) {
@@ -136,13 +122,13 @@ TEST_CASE_TEMPLATE("the normal is the outward unit vector (P - C) / r", T, RT_SC
     CHECK_MESSAGE(close(length(hit->normal), T(1)),
                   "the normal must be a unit vector: (P - C) has length R, so divide it by the radius. Its "
                   "length is "
-                      << length(hit->normal) << " in " << describe(hit));
+                      << length(hit->normal) << " in " << describe_hit(hit));
     CHECK_MESSAGE(dot(hit->normal, expected) > T(0),
                   "the normal must point outwards, from the centre towards the hit point: (P - C), not (C - P). "
                   "Got "
-                      << describe(hit));
+                      << describe_hit(hit));
     CHECK_MESSAGE(close(hit->normal, expected),
-                  "the normal at P is (P - C) / R = " << rt::test::describe(expected) << "; got " << describe(hit));
+                  "the normal at P is (P - C) / R = " << rt::test::describe(expected) << "; got " << describe_hit(hit));
 }
 
 TEST_CASE_TEMPLATE("the hit point is the ray at t", T, RT_SCALARS) {
@@ -152,9 +138,9 @@ TEST_CASE_TEMPLATE("the hit point is the ray at t", T, RT_SCALARS) {
     REQUIRE_MESSAGE(hit.has_value(), "this ray crosses the sphere; got a miss");
     CHECK_MESSAGE(close(hit->point, r.at(hit->t)),
                   "the hit point must be r(t) = o + t d for the t you return: expected "
-                      << rt::test::describe(r.at(hit->t)) << ", got " << describe(hit));
+                      << rt::test::describe(r.at(hit->t)) << ", got " << describe_hit(hit));
     CHECK_MESSAGE(close(length(hit->point - off_centre_sphere<T>().center), T(2)),
-                  "the hit point must lie on the sphere, at distance R = 2 from the centre; got " << describe(hit));
+                  "the hit point must lie on the sphere, at distance R = 2 from the centre; got " << describe_hit(hit));
     CHECK_MESSAGE(hit->object == -1,
                   "intersect_sphere leaves the object index at -1: the scene loop of chapter 03 fills it in; got "
                       << hit->object);
@@ -167,16 +153,16 @@ TEST_CASE_TEMPLATE("only hits inside the interval tmin < t < tmax count", T, RT_
     auto before = intersect_sphere(s, r, interval<T>{T(0), T(5)});
     CHECK_MESSAGE(!before.has_value(),
                   "both roots (t = 6 and t = 10) are beyond tmax = 5, so nothing in the interval is hit; got "
-                      << describe(before));
+                      << describe_hit(before));
     auto skip_near = intersect_sphere(s, r, interval<T>{T(7), infinity<T>});
     REQUIRE_MESSAGE(skip_near.has_value(),
                     "with tmin = 7 the near root t = 6 is out, but the far root t = 10 is inside (7, inf); got "
                     "a miss");
     CHECK_MESSAGE(close(skip_near->t, T(10)),
                   "with tmin = 7 the near root t = 6 does not count, so the answer is the far root t = 10; got "
-                      << describe(skip_near));
+                      << describe_hit(skip_near));
     auto between = intersect_sphere(s, r, interval<T>{T(6.5), T(9.5)});
     CHECK_MESSAGE(!between.has_value(),
                   "in (6.5, 9.5) neither root (t = 6, t = 10) lies inside the interval, so it is a miss; got "
-                      << describe(between));
+                      << describe_hit(between));
 }

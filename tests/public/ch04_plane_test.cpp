@@ -12,13 +12,11 @@ using namespace rt;
 using rt::ch04::intersect_plane;
 using rt::test::close;
 using rt::test::describe;
+using rt::test::describe_hit;
+using rt::test::everything_ahead;
+using rt::test::is_unit;
 
 namespace {
-
-template <class T>
-interval<T> everything_ahead() {
-    return {T(0), infinity<T>};
-}
 
 // The ground: the plane y = 0 with its normal pointing up.
 template <class T>
@@ -26,17 +24,6 @@ plane<T> ground() {
     return {{0, 0, 0}, {0, 1, 0}, 0};
 }
 
-template <class T>
-std::string describe_hit(const std::optional<hit_record<T>>& hit) {
-    if (!hit) return "a miss (std::nullopt)";
-    return "t = " + std::to_string(double(hit->t)) + ", point " + describe(hit->point) + ", normal " +
-           describe(hit->normal);
-}
-
-template <class T>
-bool is_unit(const vec3<T>& v) {
-    return close(length(v), T(1));
-}
 
 }  // namespace
 

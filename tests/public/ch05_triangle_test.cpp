@@ -17,13 +17,10 @@ using rt::ch05::barycentric;
 using rt::ch05::intersect_triangle;
 using rt::test::close;
 using rt::test::describe;
+using rt::test::describe_hit;
+using rt::test::everything_ahead;
 
 namespace {
-
-template <class T>
-interval<T> everything_ahead() {
-    return {T(0), infinity<T>};
-}
 
 template <class T>
 triangle<T> corner_triangle() {
@@ -36,12 +33,6 @@ ray<T> down_onto(T x, T y) {
     return {{x, y, 3}, {0, 0, -1}};
 }
 
-template <class T>
-std::string describe_hit(const std::optional<hit_record<T>>& hit) {
-    if (!hit) return "a miss (std::nullopt)";
-    return "t = " + std::to_string(double(hit->t)) + ", point " + describe(hit->point) + ", normal " +
-           describe(hit->normal);
-}
 
 }  // namespace
 

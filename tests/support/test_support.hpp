@@ -5,6 +5,8 @@
 // they say which idea of the lecture went wrong, then show the numbers.
 #pragma once
 
+#include "common/hit_record.hpp"
+#include "common/interval.hpp"
 #include "common/math.hpp"
 
 #include <doctest/doctest.h>
@@ -32,6 +34,23 @@ bool close(T a, T b, T scale = T(1)) {
     return std::fabs(a - b) <= tol * std::fmax(scale, std::fmax(std::fabs(a), std::fabs(b)));
 }
 
+// Vectors agree component by component, as close() above.
+template <class T>
+bool close(const vec3<T>& a, const vec3<T>& b) {
+    return close(a.x, b.x) && close(a.y, b.y) && close(a.z, b.z);
+}
+
+template <class T>
+bool is_unit(const vec3<T>& v) {
+    return close(length(v), T(1));
+}
+
+// The range "anywhere in front of the ray's origin": (0, infinity).
+template <class T>
+interval<T> everything_ahead() {
+    return {T(0), infinity<T>};
+}
+
 template <class T>
 std::string describe(const vec3<T>& v) {
     std::ostringstream s;
@@ -47,6 +66,13 @@ std::string describe(const std::optional<T>& t) {
     s.precision(sizeof(T) == 4 ? 9 : 17);
     s << "t = " << *t;
     return s.str();
+}
+
+template <class T>
+std::string describe_hit(const std::optional<hit_record<T>>& hit) {
+    if (!hit) return "a miss (std::nullopt)";
+    return describe(std::optional<T>(hit->t)) + ", point " + describe(hit->point) + ", normal " +
+           describe(hit->normal);
 }
 
 }  // namespace rt::test
