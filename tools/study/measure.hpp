@@ -38,6 +38,8 @@ struct outcome {
     bool failed = false;         // the routine threw (e.g. an unfinished exercise)
     std::string failure;
     std::vector<std::size_t> misclassified_per_group;  // false hits + false misses
+    std::vector<double> rel_max_per_group;             // largest relative error of a right-root hit
+    std::vector<std::size_t> compared_per_group;       // how many right-root hits that is over
 
     std::size_t misclassified() const { return false_hits + false_misses; }
     double hit_ratio() const { return queries ? double(hits) / double(queries) : 0; }
@@ -110,6 +112,8 @@ outcome evaluate(const family<Q>& fam, const std::vector<reference_answer>& refs
     out.precision = sizeof(T) == 4 ? "float" : "double";
     out.queries = fam.queries.size();
     out.misclassified_per_group.assign(fam.group_names.size(), 0);
+    out.rel_max_per_group.assign(fam.group_names.size(), 0);
+    out.compared_per_group.assign(fam.group_names.size(), 0);
     std::vector<double> ulps, rels, planes;
     std::vector<char> ray_hit, ray_ref;
     for (std::size_t i = 0; i < fam.queries.size(); ++i) {
@@ -146,6 +150,9 @@ outcome evaluate(const family<Q>& fam, const std::vector<reference_answer>& refs
         }
         ulps.push_back(ulp_distance<T>(*t, static_cast<T>(ref.t_rounded)));
         rels.push_back(relative_error(*t, ref.t));
+        double& group_max = out.rel_max_per_group[std::size_t(fam.group[i])];
+        group_max = std::max(group_max, rels.back());
+        ++out.compared_per_group[std::size_t(fam.group[i])];
         double off = detail::off_plane(q.shape, answer);
         if (off >= 0) planes.push_back(off);
     }

@@ -91,6 +91,22 @@ void print_group_table(std::ostream& os, const std::vector<std::string>& groups,
     }
 }
 
+void print_group_error_table(std::ostream& os, const std::vector<std::string>& groups, const std::vector<outcome>& rows) {
+    os << "\nLargest relative error of a hit on the right root, per group (- : no hit on the right root):\n\n"
+          "| formulation | prec |";
+    for (const std::string& g : groups) os << " " << g << " |";
+    os << "\n|---|---|";
+    for (std::size_t i = 0; i < groups.size(); ++i) os << "---|";
+    os << "\n";
+    for (const outcome& o : rows) {
+        if (o.failed || o.rel_max_per_group.size() != groups.size()) continue;
+        os << "| " << o.formulation << " | " << o.precision << " |";
+        for (std::size_t g = 0; g < groups.size(); ++g)
+            os << " " << (o.compared_per_group[g] ? fmt("%.1e", o.rel_max_per_group[g]) : "-") << " |";
+        os << "\n";
+    }
+}
+
 void print_summary_table(std::ostream& os, const std::vector<std::string>& families, const std::vector<outcome>& rows) {
     os << "\n| formulation | prec |";
     for (const std::string& f : families) os << " " << f << " |";

@@ -22,6 +22,9 @@ void print_group_table(std::ostream& os, const std::vector<std::string>& groups,
 // "misclassified rays / largest ULP error / ns per test".
 void print_summary_table(std::ostream& os, const std::vector<std::string>& families, const std::vector<outcome>& rows);
 
+// Largest relative error per group (e.g. per ground-sphere radius and height).
+void print_group_error_table(std::ostream& os, const std::vector<std::string>& groups, const std::vector<outcome>& rows);
+
 void write_csv(const std::string& path, const std::vector<outcome>& rows);
 void write_group_csv(const std::string& path, const std::vector<std::string>& groups, const std::vector<outcome>& rows);
 

@@ -37,6 +37,12 @@ using namespace rt;
 using namespace rt::study;
 namespace fm = rt::formulations;
 
+// The ground family's group names, for its per-group error table.
+std::vector<std::string>& ground_groups() {
+    static std::vector<std::string> names;
+    return names;
+}
+
 struct settings {
     case_options cases;
     timing_options timing;
@@ -92,6 +98,7 @@ void measure_families(const std::vector<family<Q>>& families, const Table& table
                                               &fm::run_batch<sphere_query<T>, &chapter07<T>>, s));
 #endif
             if (fam.name == "far") far_groups = fam.group_names;
+            if (fam.name == "ground") ground_groups() = fam.group_names;
         }
     }
 }
@@ -192,6 +199,12 @@ int main(int argc, char** argv) {
             for (const outcome& o : rows)
                 if (o.family == "far") far_rows.push_back(o);
             print_group_table(text, far_groups, static_cast<std::size_t>(s.cases.per_group), far_rows);
+        }
+        if (name == "ground") {
+            std::vector<outcome> ground_rows;
+            for (const outcome& o : rows)
+                if (o.family == "ground") ground_rows.push_back(o);
+            print_group_error_table(text, ground_groups(), ground_rows);
         }
     }
     text << "\nTotal run time " << clock.seconds() << " s.\n";
