@@ -14,6 +14,9 @@
 //
 // Never compile this with -ffast-math: the compiler would simplify
 // (a - (s - b)) to zero and every error term would vanish.
+//
+// The helpers are declared inline: they are a handful of operations each,
+// and a call per operation would cost more than the arithmetic.
 #pragma once
 
 #include <array>
@@ -31,7 +34,7 @@ struct double_word {
 };
 
 template <class T>
-double_word<T> two_sum(T a, T b) {
+inline double_word<T> two_sum(T a, T b) {
     T s = a + b;
     T bb = s - a;
     T e = (a - (s - bb)) + (b - bb);
@@ -40,7 +43,7 @@ double_word<T> two_sum(T a, T b) {
 
 // Only when |a| >= |b| (or a == 0): three operations instead of six.
 template <class T>
-double_word<T> fast_two_sum(T a, T b) {
+inline double_word<T> fast_two_sum(T a, T b) {
     T s = a + b;
     return {s, b - (s - a)};
 }
@@ -49,7 +52,7 @@ double_word<T> fast_two_sum(T a, T b) {
 // significand bits, so products of halves are exact (Dekker's product).
 // Valid while |a| stays well below the overflow threshold / 2^(bits/2).
 template <class T>
-double_word<T> split(T a) {
+inline double_word<T> split(T a) {
     constexpr T factor = sizeof(T) == sizeof(float) ? T(4097) : T(134217729);  // 2^12 + 1, 2^27 + 1
     T c = factor * a;
     T hi = c - (c - a);
@@ -67,7 +70,7 @@ inline constexpr bool fma_in_hardware = false;
 #endif
 
 template <class T>
-double_word<T> two_prod(T a, T b) {
+inline double_word<T> two_prod(T a, T b) {
     T p = a * b;
     if constexpr (fma_in_hardware) {
         return {p, std::fma(a, b, -p)};
@@ -80,7 +83,7 @@ double_word<T> two_prod(T a, T b) {
 // Sum of two double-words, accurate even when they nearly cancel: both the
 // high and the low parts are added exactly and the errors are folded back.
 template <class T>
-double_word<T> operator+(double_word<T> x, double_word<T> y) {
+inline double_word<T> operator+(double_word<T> x, double_word<T> y) {
     double_word<T> s = two_sum(x.hi, y.hi);
     double_word<T> t = two_sum(x.lo, y.lo);
     s.lo += t.hi;
@@ -92,31 +95,31 @@ double_word<T> operator+(double_word<T> x, double_word<T> y) {
 // Sum of two double-words of the same sign: nothing cancels, so the low
 // parts can be added together before renormalising (about half the work).
 template <class T>
-double_word<T> add_same_sign(double_word<T> x, double_word<T> y) {
+inline double_word<T> add_same_sign(double_word<T> x, double_word<T> y) {
     double_word<T> s = two_sum(x.hi, y.hi);
     s.lo += x.lo + y.lo;
     return fast_two_sum(s.hi, s.lo);
 }
 
 template <class T>
-double_word<T> operator-(double_word<T> x) {
+inline double_word<T> operator-(double_word<T> x) {
     return {-x.hi, -x.lo};
 }
 
 template <class T>
-double_word<T> operator-(double_word<T> x, double_word<T> y) {
+inline double_word<T> operator-(double_word<T> x, double_word<T> y) {
     return x + (-y);
 }
 
 template <class T>
-double_word<T> operator*(double_word<T> x, double_word<T> y) {
+inline double_word<T> operator*(double_word<T> x, double_word<T> y) {
     double_word<T> p = two_prod(x.hi, y.hi);
     p.lo += x.hi * y.lo + x.lo * y.hi;
     return fast_two_sum(p.hi, p.lo);
 }
 
 template <class T>
-double_word<T> operator*(double_word<T> x, T y) {
+inline double_word<T> operator*(double_word<T> x, T y) {
     double_word<T> p = two_prod(x.hi, y);
     p.lo += x.lo * y;
     return fast_two_sum(p.hi, p.lo);
@@ -128,7 +131,7 @@ double_word<T> operator*(double_word<T> x, T y) {
 // losing any of them, then a plain sum adds what is left. Used where the
 // terms cancel to something 10^8 times smaller than themselves.
 template <class T, std::size_t N>
-T sum_k3(std::array<T, N> p) {
+inline T sum_k3(std::array<T, N> p) {
     for (int sweep = 0; sweep < 2; ++sweep) {
         for (std::size_t i = 1; i < N; ++i) {
             double_word<T> s = two_sum(p[i], p[i - 1]);
@@ -143,13 +146,13 @@ T sum_k3(std::array<T, N> p) {
 
 // Scales by 2^k: exact unless the result leaves the range of T.
 template <class T>
-double_word<T> scaled(double_word<T> x, int k) {
+inline double_word<T> scaled(double_word<T> x, int k) {
     return {std::ldexp(x.hi, k), std::ldexp(x.lo, k)};
 }
 
 // The sign of hi + lo, read without rounding them together.
 template <class T>
-bool is_negative(double_word<T> x) {
+inline bool is_negative(double_word<T> x) {
     return x.hi < 0 || (x.hi == 0 && x.lo < 0);
 }
 
