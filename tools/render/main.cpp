@@ -66,9 +66,11 @@ void report_error(const scene_description& d, const scene_plan& plan, int width,
         }
     std::sort(errors.begin(), errors.end());
     auto at = [&](double q) { return errors.empty() ? 0.0 : errors[size_t(q * double(errors.size() - 1))]; };
-    std::printf("error vs long double (robust): %ld of %d pixels hit a different object; hit-point error in object "
+    std::printf("error of %s %s (specialised kernels) vs long double (robust): %ld of %d pixels hit a different object; hit-point error in object "
                 "sizes over %ld hits: median %.2g, 99th percentile %.2g, max %.2g (bound %.2g, estimate %.2g)\n",
-                wrong, width * height, compared, at(0.5), at(0.99), at(1.0), plan.bound, plan.estimated_error);
+                plan.prec == precision::single ? "float" : "double",
+                plan.form == sphere_formulation::plain ? "plain" : "robust", wrong, width * height, compared, at(0.5),
+                at(0.99), at(1.0), plan.bound, plan.estimated_error);
 }
 
 }  // namespace

@@ -120,8 +120,9 @@ std::string scene_plan::describe() const {
     std::snprintf(buffer, sizeof buffer,
                   "plan: specialised path: %s; left out: %s; conditioning %.3g (extent %.3g / smallest %.3g) -> "
                   "%s %s%s, estimated error %.2g of an object's size (bound %.2g)%s",
-                  kept.c_str(), left_out.empty() ? "nothing" : left_out.c_str(), conditioning(), extent, smallest,
-                  name_of(prec), spheres ? name_of(form) : "", spheres ? " sphere test" : "", estimated_error, bound,
+                  kept.empty() ? "no objects (background only)" : kept.c_str(),
+                  left_out.empty() ? "nothing" : left_out.c_str(), conditioning(), extent, smallest, name_of(prec),
+                  spheres ? name_of(form) : "(no sphere test)", spheres ? " sphere test" : "", estimated_error, bound,
                   estimated_error <= bound ? ""
                   : precision_forced ? " - OVER the bound: no formulation in this precision meets it"
                                      : " - OVER the bound: no formulation meets it");
