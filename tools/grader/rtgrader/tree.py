@@ -56,13 +56,14 @@ def _skipped(rel):
     return top in SKIP_AT_TOP or top.startswith("build") or "__pycache__" in rel.split(os.sep)
 
 
-def sync_source(repo, dest):
+def sync_source(repo, dest, grading_folder=None):
     """Makes dest a copy of repo; returns how many files changed."""
     changed = 0
     wanted = set()
     for dirpath, dirnames, filenames in os.walk(repo):
         rel_dir = os.path.relpath(dirpath, repo)
-        dirnames[:] = [d for d in dirnames if not _skipped(os.path.normpath(os.path.join(rel_dir, d)))]
+        dirnames[:] = [d for d in dirnames if not _skipped(os.path.normpath(os.path.join(rel_dir, d)))
+                       and os.path.join(dirpath, d) != grading_folder]   # never copy the copy into itself
         for name in filenames:
             rel = os.path.normpath(os.path.join(rel_dir, name))
             src = os.path.join(dirpath, name)
@@ -133,7 +134,7 @@ class Tree:
         for the chapters wanted (two-digit numbers; None: all) when needed."""
         with locked(self.folder):
             os.makedirs(self.source, exist_ok=True)
-            changed = sync_source(self.repo, self.source)
+            changed = sync_source(self.repo, self.source, self.folder)
             if sandbox.is_root():
                 protect(self.folder)
                 protect_repository(self.repo)
