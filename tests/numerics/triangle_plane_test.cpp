@@ -40,13 +40,14 @@ TEST_CASE("Moeller-Trumbore and half-plane leaks through shared edges are counte
                              "slip between neighbours; none did, so the study's claim needs checking");
 }
 
-TEST_CASE_TEMPLATE("snapped plane hit points lie within two ULPs of the plane", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("snapped plane hit points lie within a few ULPs of the plane", T, RT_SCALARS) {
     for (const auto& fam : plane_families<T>(small_cases())) {
         auto refs = references(fam);
         outcome o = run<T>(fam, refs, fm::plane_formulation_named("snapped"));
         // Rounding each coordinate of a stored point moves it up to sqrt(3)/2
-        // ULP off any plane; the projection itself adds about one more.
-        CHECK_MESSAGE(o.off_plane_max <= 2.0, "family '" << fam.name << "': projecting o + t d back onto the plane "
+        // ULP off any plane; the rounded dot product of the projection adds
+        // up to two more (the default study measures at most 3).
+        CHECK_MESSAGE(o.off_plane_max <= 4.0, "family '" << fam.name << "': projecting o + t d back onto the plane "
                                                                         "leaves only the rounding of the point and of "
                                                                         "the projection; largest distance "
                                                          << o.off_plane_max << " ULPs");
