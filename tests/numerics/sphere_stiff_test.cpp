@@ -100,13 +100,13 @@ TEST_CASE("Ray Tracing Gems float formulation loses rays on a far sphere in a ge
         if (starts_with(name, "axis")) continue;
         std::size_t bad = groups[g].false_hits + groups[g].false_misses;
         MESSAGE("rtg_stable float, " << name << ": " << bad << " misclassified of " << groups[g].queries << " rays");
-        bool beyond = name.find("10000") != std::string::npos || name.find("1e+06") != std::string::npos;
-        (beyond ? far_losses : near_losses) += bad;
+        if (name.size() > 4 && name.compare(name.size() - 4, 4, " 100") == 0) near_losses += bad;
+        if (name.find("100000") != std::string::npos || name.find("1e+06") != std::string::npos) far_losses += bad;
     }
-    CHECK_MESSAGE(near_losses == 0, "up to 4100 radii the perpendicular vector f - (f.d/a) d keeps enough digits in "
+    CHECK_MESSAGE(near_losses == 0, "at 100 radii the perpendicular vector f - (f.d/a) d keeps enough digits in "
                                     "float; misclassified "
                                         << near_losses);
-    CHECK_MESSAGE(far_losses > 0, "from 10^4 to 10^6 radii in a general direction f - (f.d/a) d cancels (|f| ~ 10^6, "
+    CHECK_MESSAGE(far_losses > 0, "at 10^5 and 10^6 radii in a general direction f - (f.d/a) d cancels (|f| ~ 10^6, "
                                   "|l| ~ 1, float keeps 7 digits), so silhouette rays are expected to be misclassified; "
                                   "none were, so the study's claim needs checking");
 }
