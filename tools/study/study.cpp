@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <sstream>
 #include <thread>
 
@@ -37,11 +38,8 @@ using namespace rt;
 using namespace rt::study;
 namespace fm = rt::formulations;
 
-// The ground family's group names, for its per-group error table.
-std::vector<std::string>& ground_groups() {
-    static std::vector<std::string> names;
-    return names;
-}
+// Each family's group names (e.g. the far family's distances), by family.
+using group_names = std::map<std::string, std::vector<std::string>>;
 
 struct settings {
     case_options cases;
@@ -86,8 +84,9 @@ outcome measure_one(const family<Q>& fam, const std::vector<reference_answer>& r
 
 template <class T, class Q, class Table>
 void measure_families(const std::vector<family<Q>>& families, const Table& table, const settings& s,
-                      std::vector<outcome>& rows, std::vector<std::string>& far_groups) {
+                      std::vector<outcome>& rows, group_names& groups) {
     for (const family<Q>& fam : families) {
+        groups[fam.name] = fam.group_names;
         std::vector<reference_answer> refs = references(fam);
         for (const auto& entry : table)
             rows.push_back(measure_one<T>(fam, refs, entry.name, entry.template fn<T>(), entry.template batch<T>(), s));
@@ -97,14 +96,13 @@ void measure_families(const std::vector<family<Q>>& families, const Table& table
                 rows.push_back(measure_one<T>(fam, refs, "chapter 07", &chapter07<T>,
                                               &fm::run_batch<sphere_query<T>, &chapter07<T>>, s));
 #endif
-            if (fam.name == "far") far_groups = fam.group_names;
-            if (fam.name == "ground") ground_groups() = fam.group_names;
+
         }
     }
 }
 
 template <class T>
-void measure_precision(const settings& s, std::vector<outcome>& rows, std::vector<std::string>& far_groups,
+void measure_precision(const settings& s, std::vector<outcome>& rows, group_names& groups,
                        std::vector<std::pair<std::string, std::string>>& families) {
     auto spheres = sphere_families<T>(s.cases);
     auto planes = plane_families<T>(s.cases);
@@ -117,9 +115,9 @@ void measure_precision(const settings& s, std::vector<outcome>& rows, std::vecto
         }
     };
     note(spheres), note(planes), note(triangles);
-    measure_families<T>(spheres, fm::sphere_formulations(), s, rows, far_groups);
-    measure_families<T>(planes, fm::plane_formulations(), s, rows, far_groups);
-    measure_families<T>(triangles, fm::triangle_formulations(), s, rows, far_groups);
+    measure_families<T>(spheres, fm::sphere_formulations(), s, rows, groups);
+    measure_families<T>(planes, fm::plane_formulations(), s, rows, groups);
+    measure_families<T>(triangles, fm::triangle_formulations(), s, rows, groups);
 }
 
 // Rows of one family next to each other: formulation, then float before double.
@@ -176,10 +174,10 @@ int main(int argc, char** argv) {
 
     rt::stopwatch clock;
     std::vector<outcome> rows;
-    std::vector<std::string> far_groups;
+    group_names groups;
     std::vector<std::pair<std::string, std::string>> families;
-    measure_precision<float>(s, rows, far_groups, families);
-    measure_precision<double>(s, rows, far_groups, families);
+    measure_precision<float>(s, rows, groups, families);
+    measure_precision<double>(s, rows, groups, families);
     rows = ordered(rows);
 
     std::vector<std::string> sphere_names, other_names;
@@ -198,13 +196,13 @@ int main(int argc, char** argv) {
             std::vector<outcome> far_rows;
             for (const outcome& o : rows)
                 if (o.family == "far") far_rows.push_back(o);
-            print_group_table(text, far_groups, static_cast<std::size_t>(s.cases.per_group), far_rows);
+            print_group_table(text, groups["far"], static_cast<std::size_t>(s.cases.per_group), far_rows);
         }
         if (name == "ground") {
             std::vector<outcome> ground_rows;
             for (const outcome& o : rows)
                 if (o.family == "ground") ground_rows.push_back(o);
-            print_group_error_table(text, ground_groups(), ground_rows);
+            print_group_error_table(text, groups["ground"], ground_rows);
         }
     }
     text << "\nTotal run time " << clock.seconds() << " s.\n";
@@ -218,7 +216,7 @@ int main(int argc, char** argv) {
         for (const outcome& o : rows)
             if (o.family == "far") far_rows.push_back(o);
         write_csv(out_dir + "/study.csv", rows);
-        write_group_csv(out_dir + "/far_groups.csv", far_groups, far_rows);
+        write_group_csv(out_dir + "/far_groups.csv", groups["far"], far_rows);
         write_svg(out_dir + "/study.svg", names, rows, machine.str());
         std::ofstream md(out_dir + "/study.md");
         md << text.str();
