@@ -21,6 +21,7 @@ import subprocess
 import sys
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.join(REPO, "tools", "export"))
 import rtexport  # noqa: E402
 
