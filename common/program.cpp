@@ -29,10 +29,27 @@ int run_chapter_program(int argc, char** argv, const chapter_program& program) {
     app.add_option("--compare", opt.compare, "reference PNG: exit 2 if the render differs past tolerance")
         ->check(CLI::ExistingFile);
     app.add_flag("--error", opt.report_error, "also report the numerical error against a higher-precision reference");
+    std::string scene_path;
+    CLI::Option* width_option = app.get_option("--width");
+    CLI::Option* height_option = app.get_option("--height");
+    if (program.accepts_scene_file)
+        app.add_option("--scene", scene_path,
+                       "render this scene file (scenes/README.md) with your code instead of the chapter's scene");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
+    }
+    if (!scene_path.empty()) {
+        try {
+            opt.scene_file = load_scene_file(scene_path);
+        } catch (const scene_error& e) {
+            std::fprintf(stderr, "%s: %s\n", program.id.c_str(), e.what());
+            return 1;
+        }
+        if (width_option->count() == 0) opt.width = opt.scene_file->camera.width;
+        if (height_option->count() == 0) opt.height = opt.scene_file->camera.height;
+        std::printf("%s: rendering the scene file %s\n", program.id.c_str(), scene_path.c_str());
     }
     opt.prec = prec == "float" ? precision::single : precision::double_;
 

@@ -6,14 +6,17 @@
 //
 //   ch01-unit-sphere [--out FILE.png] [--width W] [--height H]
 //                    [--precision float|double] [--compare REFERENCE.png] [--error]
+//                    [--scene FILE.json]   (chapters whose program renders scene files)
 //
 // and prints one line such as
 //   ch01 unit sphere: 400x300, 3.1 ms, 38.7 Mrays/s -> out/ch01.png
 #pragma once
 
 #include "image.hpp"
+#include "scene_file.hpp"
 
 #include <functional>
+#include <optional>
 #include <string>
 
 namespace rt {
@@ -26,6 +29,10 @@ struct program_options {
     precision prec = precision::double_;
     std::string compare;      // optional reference PNG to compare against
     bool report_error = false;  // --error: also print the render's numerical error (chapter_program::error_report)
+    // --scene FILE: the scene file to render instead of the chapter's own
+    // scene (only for programs with chapter_program::accepts_scene_file).
+    // Already read and checked; width and height default to its resolution.
+    std::optional<scene_description> scene_file;
 };
 
 struct chapter_program {
@@ -41,6 +48,9 @@ struct chapter_program {
     // describing the render's error against a higher-precision reference
     // (DESIGN.md: "where a reference exists, the error"). Not part of the time.
     std::function<std::string(const program_options&)> error_report;
+    // True when render() draws opt.scene_file if one is given: only then does
+    // the program offer --scene (so no program silently ignores it).
+    bool accepts_scene_file = false;
 };
 
 // Parses argv, renders, writes the PNG and prints the report line.
