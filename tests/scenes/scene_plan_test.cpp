@@ -1,0 +1,66 @@
+// scene_plan_test.cpp — the renderer's plan: what it leaves out, and which
+// precision and sphere formulation it picks for a scene's conditioning.
+#include "scene_plan.hpp"
+
+#include <doctest/doctest.h>
+
+using namespace rt;
+using namespace rt::render_tool;
+
+namespace {
+
+scene_description spheres_at_distance(double distance, double radius) {
+    return parse_scene(R"({"camera": {"eye": [0, 0, )" + std::to_string(distance) +
+                           R"(], "look_at": [0, 0, 0]}, "spheres": [{"center": [0, 0, 0], "radius": )" +
+                           std::to_string(radius) + "}]}",
+                       "plan-test.json");
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+}  // namespace
+
+TEST_CASE("a spheres-only scene leaves out planes, triangles, lighting and shadow rays") {
+    const scene_plan plan = make_plan(spheres_at_distance(5, 1), 1e-3, std::nullopt);
+    CHECK(plan.spheres == 1);
+    CHECK(plan.planes == 0);
+    CHECK(plan.lights == 0);
+    const std::string line = plan.describe();
+    CHECK(contains(line, "left out: plane loop, triangle loop, lighting and shadow rays (no lights)"));
+}
+
+TEST_CASE("a well-conditioned scene gets float and the plain quadratic") {
+    const scene_plan plan = make_plan(spheres_at_distance(5, 1), 1e-3, std::nullopt);
+    CHECK(plan.prec == precision::single);
+    CHECK(plan.form == sphere_formulation::plain);
+    CHECK(plan.estimated_error <= plan.bound);
+}
+
+TEST_CASE("conditioning moves the plan to the robust form and then to double") {
+    // extent / radius about 100: float's plain quadratic is past 1e-3, the robust form is not.
+    const scene_plan mid = make_plan(spheres_at_distance(100, 1), 1e-3, std::nullopt);
+    CHECK(mid.prec == precision::single);
+    CHECK(mid.form == sphere_formulation::robust);
+    // The precision chapter's sphere 4100 radii away: float is out altogether.
+    const scene_plan far = make_plan(spheres_at_distance(4100, 1), 1e-3, std::nullopt);
+    CHECK(far.prec == precision::double_);
+    CHECK(far.estimated_error <= far.bound);
+}
+
+TEST_CASE("forcing a precision keeps it and says when the bound cannot be met") {
+    const scene_plan forced = make_plan(spheres_at_distance(4100, 1), 1e-3, precision::single);
+    CHECK(forced.prec == precision::single);
+    CHECK(forced.form == sphere_formulation::robust);
+    CHECK(forced.estimated_error > forced.bound);
+    CHECK(contains(forced.describe(), "OVER the bound"));
+}
+
+TEST_CASE("the error model grows like k squared for the plain form and like k for the robust one") {
+    const double plain10 = estimated_error(precision::single, sphere_formulation::plain, 10, true, false);
+    const double plain100 = estimated_error(precision::single, sphere_formulation::plain, 100, true, false);
+    const double robust10 = estimated_error(precision::single, sphere_formulation::robust, 10, true, false);
+    const double robust100 = estimated_error(precision::single, sphere_formulation::robust, 100, true, false);
+    CHECK(plain100 / plain10 == doctest::Approx(100));
+    CHECK(robust100 / robust10 == doctest::Approx(10));
+    CHECK(estimated_error(precision::double_, sphere_formulation::plain, 100, true, false) < plain100);
+}
