@@ -67,6 +67,7 @@ struct soa_scene {
     std::vector<T> cx, cy, cz, radius, radius2;
     std::vector<T> px, py, pz, nx, ny, nz;  // planes: a point and the unit normal
     std::vector<T> ax, ay, az, e1x, e1y, e1z, e2x, e2y, e2z;  // triangles: corner a, edges b-a, c-a
+    std::vector<T> bx, by, bz, br2;  // a sphere around each triangle (radius squared), to skip it cheaply
 
     explicit soa_scene(const scene<double>& s) {
         sphere_count = s.spheres.size();
@@ -87,9 +88,15 @@ struct soa_scene {
             ax.push_back(a.x), ay.push_back(a.y), az.push_back(a.z);
             e1x.push_back(e1.x), e1y.push_back(e1.y), e1z.push_back(e1.z);
             e2x.push_back(e2.x), e2y.push_back(e2.y), e2z.push_back(e2.z);
+            // Centred on the centroid, through the farthest corner, made 1%
+            // larger so rounding in the cull test can never drop a hit.
+            const vec3d centre = (x.a + x.b + x.c) / 3.0;
+            const double r = 1.01 * std::max({length(x.a - centre), length(x.b - centre), length(x.c - centre)});
+            bx.push_back(T(centre.x)), by.push_back(T(centre.y)), bz.push_back(T(centre.z));
+            br2.push_back(T(r * r));
         }
         for (auto* v : {&cx, &cy, &cz, &radius, &radius2, &px, &py, &pz, &nx, &ny, &nz, &ax, &ay, &az, &e1x, &e1y,
-                        &e1z, &e2x, &e2y, &e2z})
+                        &e1z, &e2x, &e2y, &e2z, &bx, &by, &bz, &br2})
             while (v->size() % W) v->push_back(std::numeric_limits<T>::quiet_NaN());
     }
 };
@@ -248,6 +255,17 @@ void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, i
         const I base = I(s.sphere_count + s.plane_count);
         for (size_t i = 0; i < s.triangle_count; ++i) {
             const T e1x = s.e1x[i], e1y = s.e1y[i], e1z = s.e1z[i], e2x = s.e2x[i], e2y = s.e2y[i], e2z = s.e2z[i];
+            // Cull: skip the triangle when no ray of the packet comes near
+            // its bounding sphere (the robust discriminant: accurate even
+            // when the triangle is small and far away).
+            int near_any = 0;
+            for (int k = 0; k < W; ++k) {
+                const int o = CommonOrigin ? 0 : k;
+                const T fx = p.ox[o] - s.bx[i], fy = p.oy[o] - s.by[i], fz = p.oz[o] - s.bz[i];
+                near_any |= int(sphere_discriminant<T, sphere_mode::robust>(fx, fy, fz, T(0), s.br2[i], p.dx[k], p.dy[k],
+                                                                           p.dz[k], a[k], inv_a[k]) >= T(0));
+            }
+            if (!near_any) continue;
             if constexpr (CommonOrigin) {
                 const T sx = p.ox[0] - s.ax[i], sy = p.oy[0] - s.ay[i], sz = p.oz[0] - s.az[i];
                 const T qx = sy * e1z - sz * e1y, qy = sz * e1x - sx * e1z, qz = sx * e1y - sy * e1x;
