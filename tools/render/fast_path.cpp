@@ -292,18 +292,23 @@ void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, i
     }
 }
 
-// Is anything hit with tmin < t < tmax? One ray (a shadow ray) against W
+// Is anything hit with tmin < t < tmax? One ray (a shadow ray) against G
 // objects at a time: here the lanes are objects, and the loop stops at the
 // first group with a blocker.
 template <class T, sphere_mode SM, bool Planes, bool Tris>
 bool any_hit(const soa_scene<T>& s, const ray<T>& r, T tmin, T tmax) {
+    // Groups of G objects, one vector register of floats: larger groups
+    // would spend their lanes on the NaN padding in small scenes.
+    constexpr int G = 8;
+    static_assert(W % G == 0, "the arrays are padded to a multiple of W, so also of G");
+    auto round_up = [](size_t n) { return (n + G - 1) / G * G; };
     const T ox = r.origin.x, oy = r.origin.y, oz = r.origin.z;
     const T dx = r.direction.x, dy = r.direction.y, dz = r.direction.z;
     const T a = dx * dx + dy * dy + dz * dz, inv_a = T(1) / a;
     if constexpr (SM != sphere_mode::none) {
-        for (size_t i = 0; i < s.cx.size(); i += W) {
+        for (size_t i = 0; i < round_up(s.sphere_count); i += G) {
             int blocked = 0;
-            for (int k = 0; k < W; ++k) {
+            for (int k = 0; k < G; ++k) {
                 const size_t j = i + size_t(k);
                 const T fx = ox - s.cx[j], fy = oy - s.cy[j], fz = oz - s.cz[j];
                 const T c = SM == sphere_mode::plain ? fx * fx + fy * fy + fz * fz - s.radius2[j]
@@ -314,9 +319,9 @@ bool any_hit(const soa_scene<T>& s, const ray<T>& r, T tmin, T tmax) {
         }
     }
     if constexpr (Planes) {
-        for (size_t i = 0; i < s.px.size(); i += W) {
+        for (size_t i = 0; i < round_up(s.plane_count); i += G) {
             int blocked = 0;
-            for (int k = 0; k < W; ++k) {
+            for (int k = 0; k < G; ++k) {
                 const size_t j = i + size_t(k);
                 const T num = s.nx[j] * (s.px[j] - ox) + s.ny[j] * (s.py[j] - oy) + s.nz[j] * (s.pz[j] - oz);
                 blocked |= int(plane_t(num, s.nx[j], s.ny[j], s.nz[j], dx, dy, dz, tmin) < tmax);
@@ -325,9 +330,9 @@ bool any_hit(const soa_scene<T>& s, const ray<T>& r, T tmin, T tmax) {
         }
     }
     if constexpr (Tris) {
-        for (size_t i = 0; i < s.ax.size(); i += W) {
+        for (size_t i = 0; i < round_up(s.triangle_count); i += G) {
             int blocked = 0;
-            for (int k = 0; k < W; ++k) {
+            for (int k = 0; k < G; ++k) {
                 const size_t j = i + size_t(k);
                 const T sx = ox - s.ax[j], sy = oy - s.ay[j], sz = oz - s.az[j];
                 const T qx = sy * s.e1z[j] - sz * s.e1y[j], qy = sz * s.e1x[j] - sx * s.e1z[j],
