@@ -13,8 +13,10 @@
 #include "common/program.hpp"
 #include "common/render.hpp"
 #include "common/scene.hpp"
+#include "common/scene_file.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -46,16 +48,29 @@ scene<T> overlapping_spheres() {
 
 template <class T>
 image render_scene(const program_options& opt) {
-    const scene<T> world = overlapping_spheres<T>();
-    auto frame = camera_frame<T>::look_at({0, 0, 0}, {0, 0, -1}, {0, 1, 0});
-    pinhole_camera<T> camera(frame, T(60), opt.width, opt.height);
+    scene<T> world = overlapping_spheres<T>();
+    camera_description view;  // from the origin down -z, 60 degrees
+    view.eye = {0, 0, 0};
+    view.look_at = {0, 0, -1};
+    view.fov_degrees = 60;
+    if (opt.scene_file) {  // --scene FILE: your own scene; this chapter draws its spheres
+        world = convert_scene<T>(opt.scene_file->world);
+        view = opt.scene_file->camera;
+        if (!world.planes.empty() || !world.triangles.empty())
+            std::fprintf(stderr, "ch03: the scene's %zu planes and %zu triangles are left out (chapters 04 and 05)\n",
+                         world.planes.size(), world.triangles.size());
+        world.planes.clear();
+        world.triangles.clear();
+    }
+    const scene_camera<T> camera(view, opt.width, opt.height);
     const ch03::object_intersector<T> intersect = [&](int i, const ray<T>& r, const interval<T>& range) {
         return ch02::intersect_sphere(world.spheres[size_t(i)], r, range);
     };
     return render(opt.width, opt.height, [&](int col, int row) {
         ray<T> r = camera.primary_ray(col, row);
-        // t > 1: only what lies beyond the image plane is visible (chapter 01).
-        auto hit = ch03::closest_hit(world.object_count(), intersect, r, interval<T>::in_front_of_image_plane());
+        // t > 1: only what lies beyond the image plane is visible (chapter 01);
+        // an orthographic camera from a scene file takes t > 0.
+        auto hit = ch03::closest_hit(world.object_count(), intersect, r, camera.primary_range());
         if (!hit) return world.background;
         // A wrong index would read past the list of spheres: say so instead of crashing.
         if (!(hit->object >= 0 && hit->object < world.object_count()))
@@ -75,6 +90,7 @@ int main(int argc, char** argv) {
     rt::chapter_program program;
     program.id = "ch03";
     program.title = "scene loop";
+    program.accepts_scene_file = true;  // --scene FILE renders your own scene with your code
     program.render = [](const rt::program_options& opt, long& rays) {
         rays = long(opt.width) * opt.height;
         return opt.prec == rt::precision::single ? render_scene<float>(opt) : render_scene<double>(opt);

@@ -17,9 +17,11 @@
 #include "common/program.hpp"
 #include "common/render.hpp"
 #include "common/scene.hpp"
+#include "common/scene_file.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace {
 
@@ -66,10 +68,20 @@ color checker(const material& m, const vec3<T>& point, const vec3<T>& normal) {
 
 template <class T>
 image render_scene(const program_options& opt) {
-    const scene<T> world = spheres_on_the_ground<T>();
+    scene<T> world = spheres_on_the_ground<T>();
+    camera_description view;
+    view.eye = {0, 1.6, 5};
+    view.look_at = {0, 0.6, -1};
+    view.fov_degrees = 50;
+    if (opt.scene_file) {  // --scene FILE: your own scene; this chapter draws its spheres and planes
+        world = convert_scene<T>(opt.scene_file->world);
+        view = opt.scene_file->camera;
+        if (!world.triangles.empty())
+            std::fprintf(stderr, "ch04: the scene's %zu triangles are left out (chapter 05)\n", world.triangles.size());
+        world.triangles.clear();
+    }
     const int sphere_count = int(world.spheres.size());
-    auto frame = camera_frame<T>::look_at({0, T(1.6), T(5)}, {0, T(0.6), T(-1)}, {0, 1, 0});
-    pinhole_camera<T> camera(frame, T(50), opt.width, opt.height);
+    const scene_camera<T> camera(view, opt.width, opt.height);
 
     // Objects are numbered spheres first, then planes (common/scene.hpp).
     const ch03::object_intersector<T> intersect = [&](int i, const ray<T>& r, const interval<T>& range) {
@@ -80,8 +92,9 @@ image render_scene(const program_options& opt) {
 
     return render(opt.width, opt.height, [&](int col, int row) {
         ray<T> r = camera.primary_ray(col, row);
-        // t > 1: only what lies beyond the image plane is visible (chapter 01).
-        auto hit = ch03::closest_hit(world.object_count(), intersect, r, interval<T>::in_front_of_image_plane());
+        // t > 1: only what lies beyond the image plane is visible (chapter 01);
+        // an orthographic camera from a scene file takes t > 0.
+        auto hit = ch03::closest_hit(world.object_count(), intersect, r, camera.primary_range());
         if (!hit) return world.background;
 
         color albedo;
@@ -102,6 +115,7 @@ int main(int argc, char** argv) {
     rt::chapter_program program;
     program.id = "ch04";
     program.title = "plane";
+    program.accepts_scene_file = true;  // --scene FILE renders your own scene with your code
     program.render = [](const rt::program_options& opt, long& rays) {
         rays = long(opt.width) * opt.height;
         return opt.prec == rt::precision::single ? render_scene<float>(opt) : render_scene<double>(opt);

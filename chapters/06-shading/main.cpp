@@ -19,6 +19,7 @@
 #include "common/program.hpp"
 #include "common/render.hpp"
 #include "common/scene.hpp"
+#include "common/scene_file.hpp"
 
 #include <atomic>
 #include <cmath>
@@ -99,9 +100,16 @@ int material_of(const scene<T>& s, int object) {
 
 template <class T>
 image render_scene(const program_options& opt, long& rays) {
-    const scene<T> world = lit_scene<T>();
-    auto frame = camera_frame<T>::look_at({T(0), T(1.4), T(1.5)}, {T(0), T(0.6), T(-4)}, {0, 1, 0});
-    pinhole_camera<T> camera(frame, T(50), opt.width, opt.height);
+    scene<T> world = lit_scene<T>();
+    camera_description view;
+    view.eye = {0, 1.4, 1.5};
+    view.look_at = {0, 0.6, -4};
+    view.fov_degrees = 50;
+    if (opt.scene_file) {  // --scene FILE: your own scene, lit and shaded by your code
+        world = convert_scene<T>(opt.scene_file->world);
+        view = opt.scene_file->camera;
+    }
+    const scene_camera<T> camera(view, opt.width, opt.height);
 
     // Objects are numbered spheres, then planes, then triangles (scene.hpp).
     const ch03::object_intersector<T> intersect = [&](int i, const ray<T>& r, const interval<T>& range) {
@@ -121,8 +129,9 @@ image render_scene(const program_options& opt, long& rays) {
 
     image img = render(opt.width, opt.height, [&](int col, int row) {
         const ray<T> r = camera.primary_ray(col, row);
-        // t > 1: only what lies beyond the image plane is visible (chapter 01).
-        const auto hit = ch03::closest_hit(world.object_count(), intersect, r, interval<T>::in_front_of_image_plane());
+        // t > 1: only what lies beyond the image plane is visible (chapter 01);
+        // an orthographic camera from a scene file takes t > 0.
+        const auto hit = ch03::closest_hit(world.object_count(), intersect, r, camera.primary_range());
         if (!hit) return world.background;
         const material m = ch06::material_at(world.materials[size_t(material_of(world, hit->object))], hit->point);
         return ch06::shade(hit->point, hit->normal, -r.direction, m, world.lights, world.ambient, occluded);
@@ -137,6 +146,7 @@ int main(int argc, char** argv) {
     rt::chapter_program program;
     program.id = "ch06";
     program.title = "shading";
+    program.accepts_scene_file = true;  // --scene FILE renders your own scene with your code
     program.render = [](const rt::program_options& opt, long& rays) {
         return opt.prec == rt::precision::single ? render_scene<float>(opt, rays) : render_scene<double>(opt, rays);
     };
