@@ -1,0 +1,46 @@
+// slab_test.cpp — reference solution for chapter 08: the robust slab test.
+#include "aabb.hpp"
+
+#include <cmath>
+
+namespace rt::ch08 {
+
+namespace {
+
+// Moves an exit outwards by 4 epsilons of its magnitude (aabb.hpp).
+template <class T>
+T widen(T exit) {
+    return exit >= T(0) ? exit * slab_widen_up<T> : exit * slab_widen_down<T>;
+}
+
+}  // namespace
+
+template <class T>
+std::optional<T> intersect_box(const aabb<T>& box, const ray<T>& r, const vec3<T>& inv_direction,
+                               const interval<T>& range) {
+    T entry = range.min;
+    T exit = range.max;
+    for (int k = 0; k < 3; ++k) {
+        // The near plane is the one the ray meets first: lo when it travels
+        // up the axis, hi when it travels down. signbit, not "< 0", so that a
+        // direction of -0 (reciprocal -inf) also picks hi.
+        const bool down = std::signbit(inv_direction[k]);
+        const T near_plane = down ? box.hi[k] : box.lo[k];
+        const T far_plane = down ? box.lo[k] : box.hi[k];
+        const T t_near = (near_plane - r.origin[k]) * inv_direction[k];
+        const T t_far = (far_plane - r.origin[k]) * inv_direction[k];
+        // Written so that a NaN (0 * inf: the origin on a face plane of a slab
+        // the ray is parallel to) fails the comparison and changes nothing;
+        // such a ray lies in the closed slab for every t.
+        entry = t_near > entry ? t_near : entry;
+        exit = t_far < exit ? t_far : exit;
+    }
+    return entry <= widen(exit) ? std::optional<T>(entry) : std::nullopt;
+}
+
+template std::optional<float> intersect_box(const aabb<float>&, const ray<float>&, const vec3<float>&,
+                                            const interval<float>&);
+template std::optional<double> intersect_box(const aabb<double>&, const ray<double>&, const vec3<double>&,
+                                             const interval<double>&);
+
+}  // namespace rt::ch08

@@ -1,0 +1,182 @@
+// Public tests for chapter 08, exercise 2: closest_hit and any_hit (bvh.hpp).
+//
+// The trees here come from the GIVEN median builder, so these tests need only
+// your slab test and your traversal. The rule throughout: the tree's answer
+// equals brute force's exactly (same object, same bits of t), because a BVH is
+// only a faster way to ask the same question.
+#include "ch08_scenes.hpp"
+#include "median_build.hpp"
+
+#include "test_support.hpp"
+
+using namespace rt;
+using namespace rt::ch08;
+using namespace rt::ch08::test;
+using rt::test::describe_hit;
+
+namespace {
+
+template <class T>
+std::string object_of(const std::optional<hit_record<T>>& hit) {
+    return hit ? "object " + std::to_string(hit->object) + ", " + describe_hit(hit) : describe_hit(hit);
+}
+
+// Compares the tree with brute force on `rays` random rays; returns how many differ
+// and describes the first one.
+template <class T>
+int count_differences(const objects<T>& scene, const bvh<T>& tree, std::mt19937_64& rng, int rays, double size,
+                      std::string& first) {
+    int differ = 0;
+    const auto intersect = scene.intersector();
+    for (int i = 0; i < rays; ++i) {
+        const ray<T> r = random_ray<T>(rng, size);
+        const interval<T> range{T(0), infinity<T>};
+        const auto want = brute_force(scene, r, range);
+        const auto got = closest_hit(tree, intersect, r, range);
+        if (same_answer(want, got)) continue;
+        if (differ++ == 0)
+            first = "ray from " + rt::test::describe(r.origin) + " along " + rt::test::describe(r.direction) +
+                    ": brute force finds " + object_of(want) + "; the tree finds " + object_of(got);
+    }
+    return differ;
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("an empty tree is a miss, and no object is asked", T, RT_SCALARS) {
+    const objects<T> scene;
+    const bvh<T> tree = build_median(scene.boxes());
+    long calls = 0;
+    const ray<T> r{{0, 0, 0}, {0, 0, -1}};
+    CHECK_MESSAGE(!closest_hit(tree, scene.intersector(&calls), r, rt::test::everything_ahead<T>()),
+                  "a tree of no objects has no nodes (tree.nodes is empty): nothing can be hit");
+    CHECK_MESSAGE(!any_hit(tree, scene.intersector(&calls), r, rt::test::everything_ahead<T>()),
+                  "any_hit on an empty tree: nothing can be hit");
+    CHECK_MESSAGE(calls == 0, "with no objects, intersect must never be called (there is no index to give it)");
+}
+
+TEST_CASE_TEMPLATE("one object: the tree gives exactly brute force's hit", T, RT_SCALARS) {
+    objects<T> scene;
+    scene.spheres.push_back({{0, 0, -5}, T(1)});
+    const bvh<T> tree = build_median(scene.boxes());
+    const ray<T> r{{T(0.25), 0, 0}, {0, 0, -1}};
+    const auto want = brute_force(scene, r, rt::test::everything_ahead<T>());
+    const auto got = closest_hit(tree, scene.intersector(), r, rt::test::everything_ahead<T>());
+    REQUIRE_MESSAGE(got.has_value(), "the ray passes 0.25 from the centre of the only sphere: a hit");
+    CHECK_MESSAGE(same_answer(want, got), "the tree must return the object's own hit record with `object` set to "
+                                          "its index (0): brute force gives "
+                                              << object_of(want) << "; the tree gives " << object_of(got));
+    const ray<T> away{{T(0.25), 0, 0}, {0, 0, 1}};
+    CHECK_MESSAGE(!closest_hit(tree, scene.intersector(), away, rt::test::everything_ahead<T>()),
+                  "a ray pointing away from the only sphere misses it");
+}
+
+TEST_CASE_TEMPLATE("the nearest hit wins even when another leaf is visited first", T, RT_SCALARS) {
+    // A row of spheres along -z, one per leaf (max_leaf_size 1). The ray from
+    // the side crosses all of them; only the nearest is the answer.
+    objects<T> scene;
+    for (int i = 0; i < 8; ++i) scene.spheres.push_back({{0, 0, T(-3 * i - 3)}, T(1)});
+    build_options one_per_leaf;
+    one_per_leaf.max_leaf_size = 1;
+    const bvh<T> tree = build_median(scene.boxes(), one_per_leaf);
+    for (T dz : {T(-1), T(1)}) {
+        const ray<T> r{{0, 0, dz < 0 ? T(0) : T(-30)}, {0, 0, dz}};
+        const auto want = brute_force(scene, r, rt::test::everything_ahead<T>());
+        const auto got = closest_hit(tree, scene.intersector(), r, rt::test::everything_ahead<T>());
+        CHECK_MESSAGE(same_answer(want, got),
+                      "a ray along the row of 8 spheres hits every one of them; the answer is the nearest ("
+                          << object_of(want) << "). Got " << object_of(got)
+                          << ". A farther one means the search stopped at the first leaf with a hit, or did not "
+                             "shrink range.max to the best t so far, or visited the far child and never came "
+                             "back to the near one");
+    }
+}
+
+TEST_CASE_TEMPLATE("equal t: the lowest object index wins, whatever order the tree visits", T, RT_SCALARS) {
+    // The same sphere three times, at indices 1, 4 and 6, among others; the
+    // copies are hit at exactly the same t. Brute force keeps index 1.
+    objects<T> scene;
+    const sphere<T> twin{{0, 0, -5}, T(1)};
+    const sphere<T> others[] = {{{3, 0, -5}, T(1)}, {{-3, 0, -5}, T(1)}, {{0, 3, -5}, T(1)}, {{0, -3, -5}, T(1)}};
+    scene.spheres = {others[0], twin, others[1], others[2], twin, others[3], twin};
+    build_options one_per_leaf;
+    one_per_leaf.max_leaf_size = 1;
+    const bvh<T> tree = build_median(scene.boxes(), one_per_leaf);
+    const ray<T> r{{T(0.1), T(0.2), 0}, {0, 0, -1}};
+    const auto got = closest_hit(tree, scene.intersector(), r, rt::test::everything_ahead<T>());
+    REQUIRE_MESSAGE(got.has_value(), "the ray hits the sphere at (0, 0, -5), present three times");
+    CHECK_MESSAGE(got->object == 1,
+                  "objects 1, 4 and 6 are the same sphere, hit at exactly the same t; brute force (0, 1, 2, ...) "
+                  "keeps the first, object 1, and so must the tree. The tree may meet object 4 or 6 first: in a "
+                  "leaf, ask each object up to AND INCLUDING the best t (range.max = the next number above it, "
+                  "std::nextafter), and replace the best hit on an equal t when the index is lower. Got "
+                      << object_of(got));
+}
+
+TEST_CASE_TEMPLATE("random spheres: the tree's closest hit is brute force's, bit for bit", T, RT_SCALARS) {
+    std::mt19937_64 rng(8001);
+    objects<T> scene;
+    add_random_spheres(scene, rng, 300, 10, 0.05, 0.8);
+    const bvh<T> tree = build_median(scene.boxes());
+    std::string first;
+    const int differ = count_differences(scene, tree, rng, 400, 12, first);
+    CHECK_MESSAGE(differ == 0, differ << " of 400 rays through 300 random spheres got another answer from the tree "
+                                         "than from brute force. First: "
+                                      << first);
+}
+
+TEST_CASE_TEMPLATE("random triangles and a flat mesh: the tree's closest hit is brute force's", T, RT_SCALARS) {
+    std::mt19937_64 rng(8002);
+    objects<T> scene;
+    add_random_triangles(scene, rng, 200, 5, 1.5);
+    add_planar_grid(scene, 8, T(0.25));  // 128 triangles with flat boxes, sharing edges
+    add_random_spheres(scene, rng, 50, 5, 0.1, 0.5);
+    const bvh<T> tree = build_median(scene.boxes());
+    std::string first;
+    const int differ = count_differences(scene, tree, rng, 400, 6, first);
+    CHECK_MESSAGE(differ == 0, differ << " of 400 rays through triangles, a flat mesh and spheres got another answer "
+                                         "from the tree than from brute force. First: "
+                                      << first);
+
+    // Straight down through the flat mesh, through its shared edges and corners:
+    // two or more triangles are hit at the same t, the lowest index wins.
+    int wrong = 0;
+    std::string first_wrong;
+    for (int i = -8; i <= 8; ++i) {
+        const ray<T> down{{T(i) / T(8), T(3), T(i) / T(16)}, {0, -1, 0}};
+        const auto want = brute_force(scene, down, rt::test::everything_ahead<T>());
+        const auto got = closest_hit(tree, scene.intersector(), down, rt::test::everything_ahead<T>());
+        if (!same_answer(want, got) && wrong++ == 0)
+            first_wrong = "down from " + rt::test::describe(down.origin) + ": brute force " + object_of(want) +
+                          ", tree " + object_of(got);
+    }
+    CHECK_MESSAGE(wrong == 0, wrong << " rays straight down (direction x and z components 0) through edges and "
+                                       "corners of the flat mesh got another answer than brute force. Flat boxes "
+                                       "must be entered (<=), zero direction components must not produce NaN "
+                                       "misses, and equal t must go to the lowest index. First: "
+                                    << first_wrong);
+}
+
+TEST_CASE_TEMPLATE("any_hit says whether closest_hit finds something", T, RT_SCALARS) {
+    std::mt19937_64 rng(8003);
+    objects<T> scene;
+    add_random_spheres(scene, rng, 100, 10, 0.1, 1.0);
+    add_random_triangles(scene, rng, 100, 10, 2.0);
+    const bvh<T> tree = build_median(scene.boxes());
+    const auto intersect = scene.intersector();
+    int disagree = 0, hits = 0;
+    for (int i = 0; i < 400; ++i) {
+        const ray<T> r = random_ray<T>(rng, 12);
+        // Shadow rays look at a segment: (0, |to - from|) of a unit direction.
+        std::uniform_real_distribution<double> length(0.5, 8);
+        const interval<T> segment{T(0), T(length(rng))};
+        const ray<T> unit{r.origin, normalize(r.direction)};
+        const bool closest = closest_hit(tree, intersect, unit, segment).has_value();
+        hits += closest;
+        if (any_hit(tree, intersect, unit, segment) != closest) ++disagree;
+    }
+    REQUIRE(hits > 20);
+    CHECK_MESSAGE(disagree == 0, "any_hit disagreed with closest_hit on " << disagree
+                                     << " of 400 shadow-ray segments. It must be true exactly when something is "
+                                        "hit with range.min < t < range.max: same boxes, same range, no shrinking");
+}
