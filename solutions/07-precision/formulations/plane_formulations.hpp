@@ -7,9 +7,15 @@
 // rounding can leave the point a visible distance off the plane (the start
 // of "shadow acne"). Both routines return t and the point.
 //
-// A ray parallel to the plane (d.n = 0) or lying in it divides by zero:
-// the quotient is infinite or NaN, and the range test rejects both.
+// A ray parallel to the plane or lying in it is a miss, decided on the
+// EXACT d.n (exact_sign.hpp): a rounded d.n can be a tiny non-zero number
+// for an exactly parallel ray, and dividing by it would give a false hit at
+// an enormous t. A direction so small that d.n would underflow (a
+// subnormal, but non-zero, direction) is first scaled by a power of two;
+// t scales back exactly.
 #pragma once
+
+#include "exact_sign.hpp"
 
 #include "common/interval.hpp"
 #include "common/ray.hpp"
@@ -25,10 +31,25 @@ struct plane_hit {
     vec3<T> point;
 };
 
+namespace detail {
+// t = (q - o).n / d.n, or NaN when d.n is exactly 0 (parallel or in the
+// plane; NaN fails every range test).
+template <class T>
+T plane_t(const ray<T>& ray_, const plane<T>& p) {
+    if (parallel_exactly(ray_.direction, p.normal)) return std::numeric_limits<T>::quiet_NaN();
+    const int k = direction_scale(ray_.direction);
+    if (k == 0) return dot(p.point - ray_.origin, p.normal) / dot(ray_.direction, p.normal);
+    const vec3<T>& d = ray_.direction;
+    const vec3<T> scaled(std::ldexp(d.x, k), std::ldexp(d.y, k), std::ldexp(d.z, k));
+    // o + t' (2^k d) is the same point as o + t d when t = 2^k t'.
+    return std::ldexp(dot(p.point - ray_.origin, p.normal) / dot(scaled, p.normal), k);
+}
+}  // namespace detail
+
 // 1. The direct formula; the point is o + t d.
 template <class T>
 std::optional<plane_hit<T>> plane_direct(const ray<T>& ray_, const plane<T>& p, const interval<T>& range) {
-    T t = dot(p.point - ray_.origin, p.normal) / dot(ray_.direction, p.normal);
+    T t = detail::plane_t(ray_, p);
     if (!range.contains(t)) return std::nullopt;
     return plane_hit<T>{t, ray_.at(t)};
 }
@@ -39,7 +60,7 @@ std::optional<plane_hit<T>> plane_direct(const ray<T>& ray_, const plane<T>& p, 
 // can have.
 template <class T>
 std::optional<plane_hit<T>> plane_snapped(const ray<T>& ray_, const plane<T>& p, const interval<T>& range) {
-    T t = dot(p.point - ray_.origin, p.normal) / dot(ray_.direction, p.normal);
+    T t = detail::plane_t(ray_, p);
     if (!range.contains(t)) return std::nullopt;
     vec3<T> x = ray_.at(t);
     T off = dot(x - p.point, p.normal) / dot(p.normal, p.normal);

@@ -11,7 +11,11 @@
 // Every routine has the contract of the course's sphere exercises: the
 // smallest t with range.min < t < range.max, or std::nullopt; never NaN,
 // never infinity, never a t outside the range. The direction need not be
-// unit length; a zero direction is a miss.
+// unit length; a zero direction is a miss. Forms 1 to 5 compute d.d
+// plainly, so a non-zero direction whose d.d underflows to 0 (components
+// below about 1e-23 in float, 1e-162 in double) is treated as zero: a
+// miss. The compensated and mixed forms scale such a direction by a power
+// of two and answer it like any other.
 #pragma once
 
 #include "error_free.hpp"

@@ -9,8 +9,14 @@
 //
 // Every routine: the t with range.min < t < range.max where the ray meets
 // the triangle, or std::nullopt. A degenerate triangle, a ray parallel to
-// the triangle or lying in its plane, is a miss.
+// the triangle or lying in its plane, is a miss, decided EXACTLY
+// (exact_sign.hpp's flat_exactly, asked only about rays that would
+// otherwise hit): rounding can make the determinant of such a ray a tiny
+// non-zero number. A non-zero direction too small for its products to stay
+// normal (subnormal) is scaled by a power of two first (t scales back).
 #pragma once
+
+#include "exact_sign.hpp"
 
 #include "common/interval.hpp"
 #include "common/ray.hpp"
@@ -22,19 +28,36 @@
 
 namespace rt::formulations {
 
+namespace detail {
+// o + t d = o + t' (2^k d): run F on the scaled direction with an unbounded
+// range, then scale t' back and apply the caller's range.
+template <auto F, class T>
+std::optional<T> with_scaled_direction(const ray<T>& ray_, const triangle<T>& tri, const interval<T>& range, int k) {
+    const vec3<T>& d = ray_.direction;
+    ray<T> scaled{ray_.origin, vec3<T>(std::ldexp(d.x, k), std::ldexp(d.y, k), std::ldexp(d.z, k))};
+    std::optional<T> t = F(scaled, tri, interval<T>{-infinity<T>, infinity<T>});
+    if (!t) return std::nullopt;
+    T back = std::ldexp(*t, k);
+    if (!range.contains(back)) return std::nullopt;
+    return back;
+}
+}  // namespace detail
+
 // 1. The lecture's method: meet the triangle's plane, then ask whether the
 // hit point lies on the inner side of each edge (three half-planes). The
 // point is rounded before the edge tests, so neighbouring triangles judge
 // slightly different points: leaks happen.
 template <class T>
 std::optional<T> triangle_half_planes(const ray<T>& ray_, const triangle<T>& tri, const interval<T>& range) {
+    if (const int k = direction_scale(ray_.direction); k != 0)
+        return detail::with_scaled_direction<&triangle_half_planes<T>>(ray_, tri, range, k);
     vec3<T> n = cross(tri.b - tri.a, tri.c - tri.a);
     T t = dot(tri.a - ray_.origin, n) / dot(ray_.direction, n);
     if (!range.contains(t)) return std::nullopt;
     vec3<T> p = ray_.at(t);
     bool inside = dot(cross(tri.b - tri.a, p - tri.a), n) >= 0 && dot(cross(tri.c - tri.b, p - tri.b), n) >= 0 &&
                   dot(cross(tri.a - tri.c, p - tri.c), n) >= 0;
-    if (!inside) return std::nullopt;
+    if (!inside || flat_exactly(ray_.direction, tri.a, tri.b, tri.c)) return std::nullopt;
     return t;
 }
 
@@ -46,6 +69,8 @@ std::optional<T> triangle_half_planes(const ray<T>& ray_, const triangle<T>& tri
 // measure the formula itself.
 template <class T>
 std::optional<T> triangle_moller_trumbore(const ray<T>& ray_, const triangle<T>& tri, const interval<T>& range) {
+    if (const int k = direction_scale(ray_.direction); k != 0)
+        return detail::with_scaled_direction<&triangle_moller_trumbore<T>>(ray_, tri, range, k);
     vec3<T> e1 = tri.b - tri.a, e2 = tri.c - tri.a;
     vec3<T> pv = cross(ray_.direction, e2);
     T det = dot(e1, pv);
@@ -58,7 +83,7 @@ std::optional<T> triangle_moller_trumbore(const ray<T>& ray_, const triangle<T>&
     T v = dot(ray_.direction, qv) * inv;
     if (!(v >= 0 && u + v <= 1)) return std::nullopt;
     T t = dot(e2, qv) * inv;
-    if (!range.contains(t)) return std::nullopt;
+    if (!range.contains(t) || flat_exactly(ray_.direction, tri.a, tri.b, tri.c)) return std::nullopt;
     return t;
 }
 
@@ -95,6 +120,8 @@ T edge_function(T x1, T y1, T x2, T y2) {
 // computed from the same two numbers, with opposite signs).
 template <class T>
 std::optional<T> triangle_watertight(const ray<T>& ray_, const triangle<T>& tri, const interval<T>& range) {
+    if (const int k = direction_scale(ray_.direction); k != 0)
+        return detail::with_scaled_direction<&triangle_watertight<T>>(ray_, tri, range, k);
     const vec3<T>& d = ray_.direction;
     vec3<T> ad(std::fabs(d.x), std::fabs(d.y), std::fabs(d.z));
     int kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
@@ -118,7 +145,7 @@ std::optional<T> triangle_watertight(const ray<T>& ray_, const triangle<T>& tri,
     if (det == 0) return std::nullopt;  // the ray lies in the triangle's plane
     T num = u * (sz * component(A, kz)) + v * (sz * component(B, kz)) + w * (sz * component(C, kz));
     T t = num / det;
-    if (!range.contains(t)) return std::nullopt;
+    if (!range.contains(t) || flat_exactly(d, tri.a, tri.b, tri.c)) return std::nullopt;
     return t;
 }
 
