@@ -9,6 +9,7 @@
 #include "test_support.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <vector>
 
@@ -65,6 +66,56 @@ std::string join(const std::vector<int>& numbers) {
     return numbers.empty() ? "none" : s.str();
 }
 
+
+// What a wrong answer says about the loop that returned it. ctest may run the
+// tests in any order, so each message names the mistake its own numbers point
+// to (in the lecture's words), not only the idea its test was written for.
+template <class T>
+std::string diagnosis(const std::optional<hit_record<T>>& hit, const std::vector<T>& walls,
+                      const interval<T>& range) {
+    if (!hit) return "";
+    std::ostringstream s;
+    if (std::isnan(hit->t)) return ". A NaN t is never a hit: return the record an object gave you, unchanged.";
+    if (hit->object == -1)
+        return ". The object tests leave `object` at -1: the loop knows which i it asked and must set "
+               "hit.object = i.";
+    if (!(hit->t > range.min)) {
+        s << ". That t is not beyond the caller's tmin = " << range.min
+          << ": pass the caller's tmin on to every object unchanged (do not replace it with 0 or an epsilon).";
+        return s.str();
+    }
+    if (!(hit->t < range.max)) {
+        s << ". That t is beyond the caller's tmax = " << range.max << ": start the loop from the caller's range.";
+        return s.str();
+    }
+    std::vector<size_t> in_range;
+    for (size_t i = 0; i < walls.size(); ++i)
+        if (range.contains(walls[i])) in_range.push_back(i);
+    if (in_range.empty()) return "";
+    size_t nearest = in_range.front();
+    for (size_t i : in_range)
+        if (walls[i] < walls[nearest]) nearest = i;
+    if (hit->t != walls[nearest]) {
+        if (in_range.size() > 1 && hit->t == walls[in_range.front()])
+            return ". That is the first object hit in the list: the loop must not stop at its first hit, a later "
+                   "object may be nearer.";
+        if (in_range.size() > 1 && hit->t == walls[in_range.back()])
+            return ". That is the last object hit in the list: every hit replaced the best one, even a farther "
+                   "one. Shrink tmax to the closest t so far, so a farther object cannot win.";
+        if (nearest == 0) return ". The nearest is object 0: does the loop start at i = 0?";
+        if (nearest + 1 == walls.size()) return ". The nearest is the last object: does the loop run up to i < object_count?";
+        return "";
+    }
+    if (hit->object != int(nearest)) {
+        s << ". t = " << hit->t << " is object " << nearest << "'s hit, but hit.object says " << hit->object
+          << ": set hit.object = i, the index the loop asked.";
+        return s.str();
+    }
+    if (hit->normal.x != T(hit->object))
+        return ". The record mixes objects: return the nearest object's own hit record (its t, point and normal).";
+    return "";
+}
+
 }  // namespace
 
 TEST_CASE_TEMPLATE("the closest of several hits wins", T, RT_SCALARS) {
@@ -73,7 +124,8 @@ TEST_CASE_TEMPLATE("the closest of several hits wins", T, RT_SCALARS) {
     REQUIRE_MESSAGE(hit.has_value(), "every object is hit in (0, inf) (" << list(walls) << "); got a miss");
     CHECK_MESSAGE(close(hit->t, T(2)),
                   "the ray sees the nearest surface: of " << list(walls) << " the smallest t is 2. Got "
-                                                          << describe(hit));
+                                                          << describe(hit)
+                                                          << diagnosis(hit, walls, everything_ahead<T>()));
 }
 
 TEST_CASE_TEMPLATE("the hit says which object it came from", T, RT_SCALARS) {
@@ -86,7 +138,7 @@ TEST_CASE_TEMPLATE("the hit says which object it came from", T, RT_SCALARS) {
                       << describe(hit));
     CHECK_MESSAGE((hit->object == -1 || hit->object == 1),
                   "of " << list(walls) << " the nearest is object 1, so hit.object must be 1; got "
-                        << describe(hit));
+                        << describe(hit) << diagnosis(hit, walls, everything_ahead<T>()));
     CHECK_MESSAGE(hit->normal.x == T(1),
                   "return the nearest object's own hit record (its t, point and normal), not a mix of "
                   "records; got a normal from object "
@@ -103,7 +155,7 @@ TEST_CASE_TEMPLATE("the answer does not depend on the order of the objects", T, 
         CHECK_MESSAGE(ok, "the closest hit is the same surface whatever order the objects are listed in (ask "
                           "every object, 0 to object_count-1, and keep the nearest). With "
                               << list(walls) << " the answer is t = 1.5 on object " << nearest << "; got "
-                              << describe(hit));
+                              << describe(hit) << diagnosis(hit, walls, everything_ahead<T>()));
         if (!ok) break;  // one counter-example is enough to read
     } while (std::next_permutation(walls.begin(), walls.end()));
 }
@@ -114,7 +166,7 @@ TEST_CASE_TEMPLATE("nothing beyond tmax is hit", T, RT_SCALARS) {
     CHECK_MESSAGE(!hit.has_value(),
                   "every object (" << list(walls) << ") is beyond tmax = 4: pass the caller's range on, and the "
                                       "answer is a miss; got "
-                                   << describe(hit));
+                                   << describe(hit) << diagnosis(hit, walls, interval<T>{T(0), T(4)}));
 }
 
 TEST_CASE_TEMPLATE("nothing before tmin is hit", T, RT_SCALARS) {
@@ -122,10 +174,13 @@ TEST_CASE_TEMPLATE("nothing before tmin is hit", T, RT_SCALARS) {
     const std::vector<T> walls{T(0.5), T(3)};
     auto hit = closest_hit<T>(2, walls_at(walls), straight_ahead<T>(), interval<T>::in_front_of_image_plane());
     REQUIRE_MESSAGE(hit.has_value(), "object 1 at t = 3 is in front of the image plane (t > 1); got a miss");
-    CHECK_MESSAGE((close(hit->t, T(3)) && hit->object == 1),
+    CHECK_MESSAGE(close(hit->t, T(3)),
                   "object 0 at t = 0.5 lies between the eye and the image plane, so it must not count: keep "
                   "the caller's tmin when you ask each object. Expected t = 3 on object 1; got "
-                      << describe(hit));
+                      << describe(hit) << diagnosis(hit, walls, interval<T>::in_front_of_image_plane()));
+    CHECK_MESSAGE(hit->object == 1, "t = 3 is object 1's hit, so hit.object must be 1; got "
+                                        << describe(hit)
+                                        << diagnosis(hit, walls, interval<T>::in_front_of_image_plane()));
 }
 
 TEST_CASE_TEMPLATE("an empty scene is a miss", T, RT_SCALARS) {
@@ -154,7 +209,8 @@ TEST_CASE_TEMPLATE("each hit shrinks tmax for the objects after it", T, RT_SCALA
     const interval<T> start{T(0.25), T(100)};
     auto hit = closest_hit<T>(4, recording, straight_ahead<T>(), start);
     REQUIRE_MESSAGE(hit.has_value(), "every object is hit in (0.25, 100) (" << list(walls) << "); got a miss");
-    CHECK_MESSAGE((close(hit->t, T(1)) && hit->object == 3), "the nearest is t = 1 on object 3; got " << describe(hit));
+    CHECK_MESSAGE((close(hit->t, T(1)) && hit->object == 3),
+                  "the nearest is t = 1 on object 3; got " << describe(hit) << diagnosis(hit, walls, start));
     REQUIRE_MESSAGE(asked == std::vector<int>({0, 1, 2, 3}),
                     "test every object exactly once, in order 0, 1, 2, 3; the objects asked were: "
                         << join(asked));
