@@ -1,5 +1,6 @@
 #include "program.hpp"
 
+#include "chapter_scenes.hpp"
 #include "image_compare.hpp"
 #include "stub.hpp"
 #include "timing.hpp"
@@ -12,6 +13,65 @@
 
 namespace rt {
 
+namespace {
+
+// Removes the kinds of shape the chapter cannot draw yet, and says so:
+// "ch04: the scene's 20 triangles are left out (chapter 05)".
+void leave_out_undrawn_shapes(const chapter_program& program, scene<double>& world) {
+    std::string shapes, chapters;
+    int kinds = 0;
+    const auto leave_out = [&](auto& list, const std::string& name, const char* chapter) {
+        if (list.empty()) return;
+        shapes += (kinds ? " and " : "") + std::to_string(list.size()) + " " + name + (list.size() > 1 ? "s" : "");
+        chapters += (kinds ? " and " : "") + std::string(chapter);
+        ++kinds;
+        list.clear();
+    };
+    if (!program.draws_planes) leave_out(world.planes, "plane", "04");
+    if (!program.draws_triangles) leave_out(world.triangles, "triangle", "05");
+    if (kinds > 0)
+        std::fprintf(stderr, "%s: the scene's %s are left out (chapter%s %s)\n", program.id.c_str(), shapes.c_str(),
+                     kinds > 1 ? "s" : "", chapters.c_str());
+}
+
+// The scene to draw: the file given with --scene, or the chapter's own.
+scene_description read_scene(const chapter_program& program, const std::string& path) {
+    scene_description d;
+    if (path.empty()) {
+        const chapter_scene own = chapter_scene_file(program.id);
+        d = parse_scene(own.text, own.source);
+    } else {
+        d = load_scene_file(path);
+        std::printf("%s: rendering the scene file %s\n", program.id.c_str(), path.c_str());
+    }
+    leave_out_undrawn_shapes(program, d.world);
+    return d;
+}
+
+// "out/ch04.png" -> "out/ch04-diff.png"
+std::string diff_path(const std::string& out) {
+    std::filesystem::path p(out);
+    return (p.parent_path() / (p.stem().string() + "-diff.png")).string();
+}
+
+// --compare: prints the verdict; a picture past tolerance leaves its
+// difference image next to the output. Returns true when the pictures match.
+bool compare_with_reference(const chapter_program& program, const image& img, const program_options& opt) {
+    const compare_tolerance tol;
+    image diff;
+    const compare_result r = compare_images(img, read_png(opt.compare), tol, &diff);
+    std::printf("%s compare with %s: %s: %s\n", program.id.c_str(), opt.compare.c_str(),
+                r.within(tol) ? "match" : "MISMATCH", r.summary(tol).c_str());
+    if (!r.within(tol) && r.same_size) {
+        const std::string path = diff_path(opt.out);
+        write_png(diff, path);
+        std::printf("%s difference image (red: past tolerance): %s\n", program.id.c_str(), path.c_str());
+    }
+    return r.within(tol);
+}
+
+}  // namespace
+
 int run_chapter_program(int argc, char** argv, const chapter_program& program) {
     program_options opt;
     opt.out = "out/" + program.id + ".png";
@@ -21,18 +81,21 @@ int run_chapter_program(int argc, char** argv, const chapter_program& program) {
 
     CLI::App app{program.id + ": renders the " + program.title + " scene to a PNG file"};
     app.add_option("-o,--out", opt.out, "PNG file to write")->capture_default_str();
-    app.add_option("--width", opt.width, "image width in pixels")->check(CLI::Range(1, 16384))->capture_default_str();
-    app.add_option("--height", opt.height, "image height in pixels")->check(CLI::Range(1, 16384))->capture_default_str();
+    CLI::Option* width_option = app.add_option("--width", opt.width, "image width in pixels")
+                                    ->check(CLI::Range(1, max_image_side))
+                                    ->capture_default_str();
+    CLI::Option* height_option = app.add_option("--height", opt.height, "image height in pixels")
+                                     ->check(CLI::Range(1, max_image_side))
+                                     ->capture_default_str();
     app.add_option("--precision", prec, "scalar type of the intersection code")
         ->check(CLI::IsMember({"float", "double"}))
         ->capture_default_str();
-    app.add_option("--compare", opt.compare, "reference PNG: exit 2 if the render differs past tolerance")
+    app.add_option("--compare", opt.compare,
+                   "reference PNG: exit 2 if the render differs past tolerance (and write the difference image)")
         ->check(CLI::ExistingFile);
     app.add_flag("--error", opt.report_error, "also report the numerical error against a higher-precision reference");
     std::string scene_path;
-    CLI::Option* width_option = app.get_option("--width");
-    CLI::Option* height_option = app.get_option("--height");
-    if (program.accepts_scene_file)
+    if (program.draws_scene)
         app.add_option("--scene", scene_path,
                        "render this scene file (scenes/README.md) with your code instead of the chapter's scene");
     try {
@@ -40,20 +103,14 @@ int run_chapter_program(int argc, char** argv, const chapter_program& program) {
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     }
-    if (!scene_path.empty()) {
-        try {
-            opt.scene_file = load_scene_file(scene_path);
-        } catch (const scene_error& e) {
-            std::fprintf(stderr, "%s: %s\n", program.id.c_str(), e.what());
-            return 1;
-        }
-        if (width_option->count() == 0) opt.width = opt.scene_file->camera.width;
-        if (height_option->count() == 0) opt.height = opt.scene_file->camera.height;
-        std::printf("%s: rendering the scene file %s\n", program.id.c_str(), scene_path.c_str());
-    }
     opt.prec = prec == "float" ? precision::single : precision::double_;
 
     try {
+        if (program.draws_scene) {
+            opt.scene = read_scene(program, scene_path);
+            if (width_option->count() == 0) opt.width = opt.scene.camera.width;
+            if (height_option->count() == 0) opt.height = opt.scene.camera.height;
+        }
         long rays = 0;
         stopwatch sw;
         image img = program.render(opt, rays);
@@ -70,15 +127,11 @@ int run_chapter_program(int argc, char** argv, const chapter_program& program) {
                 program.error_report ? program.error_report(opt) : "this chapter has no error reference";
             std::printf("%s error: %s\n", program.id.c_str(), report.c_str());
         }
-
-        if (!opt.compare.empty()) {
-            compare_tolerance tol;
-            compare_result r = compare_images(img, read_png(opt.compare), tol);
-            std::printf("%s compare with %s: %s: %s\n", program.id.c_str(), opt.compare.c_str(),
-                        r.within(tol) ? "match" : "MISMATCH", r.summary(tol).c_str());
-            if (!r.within(tol)) return 2;
-        }
+        if (!opt.compare.empty() && !compare_with_reference(program, img, opt)) return 2;
         return 0;
+    } catch (const scene_error& e) {
+        std::fprintf(stderr, "%s: %s\n", program.id.c_str(), e.what());
+        return 1;
     } catch (const not_implemented& e) {
         std::fprintf(stderr, "%s: %s\n", program.id.c_str(), e.what());
         return exit_not_implemented;

@@ -6,7 +6,10 @@
 //
 //   ch01-unit-sphere [--out FILE.png] [--width W] [--height H]
 //                    [--precision float|double] [--compare REFERENCE.png] [--error]
-//                    [--scene FILE.json]   (chapters whose program renders scene files)
+//                    [--scene FILE.json]   (chapters 03 on, which draw scene files)
+//
+// With --compare, a picture past tolerance also leaves its difference image
+// next to the output (out/ch04-diff.png for out/ch04.png) and names it.
 //
 // and prints one line such as
 //   ch01 unit sphere: 400x300, 3.1 ms, 38.7 Mrays/s -> out/ch01.png
@@ -16,7 +19,6 @@
 #include "scene_file.hpp"
 
 #include <functional>
-#include <optional>
 #include <string>
 
 namespace rt {
@@ -29,10 +31,11 @@ struct program_options {
     precision prec = precision::double_;
     std::string compare;      // optional reference PNG to compare against
     bool report_error = false;  // --error: also print the render's numerical error (chapter_program::error_report)
-    // --scene FILE: the scene file to render instead of the chapter's own
-    // scene (only for programs with chapter_program::accepts_scene_file).
-    // Already read and checked; width and height default to its resolution.
-    std::optional<scene_description> scene_file;
+    // Programs with chapter_program::draws_scene: the scene to draw, already
+    // read and checked: the chapter's own scenes/chNN-*.json, or the file
+    // given with --scene. Kinds of shape the chapter cannot draw yet are
+    // removed. width and height default to its camera's resolution.
+    scene_description scene;
 };
 
 struct chapter_program {
@@ -46,11 +49,15 @@ struct chapter_program {
     std::function<image(const program_options&, long& rays_traced)> render;
     // Optional: with --error, called after the timed render; returns one line
     // describing the render's error against a higher-precision reference
-    // (DESIGN.md: "where a reference exists, the error"). Not part of the time.
+    // (where a reference exists, the error is part of the report). Not part of the time.
     std::function<std::string(const program_options&)> error_report;
-    // True when render() draws opt.scene_file if one is given: only then does
-    // the program offer --scene (so no program silently ignores it).
-    bool accepts_scene_file = false;
+    // True when render() draws opt.scene: only then does the program read its
+    // scene file and offer --scene (so no program silently ignores it).
+    bool draws_scene = false;
+    // The kinds of shape render() can intersect besides spheres. A scene's
+    // other shapes are left out, and the program says so.
+    bool draws_planes = true;
+    bool draws_triangles = true;
 };
 
 // Parses argv, renders, writes the PNG and prints the report line.

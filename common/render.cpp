@@ -52,33 +52,35 @@ private:
 
 }  // namespace
 
-image render(int width, int height, const pixel_shader& shade) {
-    image img(width, height);
-    std::atomic<int> next_row{0}, rows_done{0};
+void for_each_row(int rows, const std::function<void(int row)>& body) {
+    std::atomic<int> next_row{0};
     std::atomic<bool> failed{false};
     std::exception_ptr error;
     std::mutex error_mutex;
-    progress_line progress(height);
-
     auto worker = [&] {
-        for (int row = next_row++; row < height && !failed; row = next_row++) {
-            try {
-                for (int col = 0; col < width; ++col) img.at(col, row) = shade(col, row);
-            } catch (...) {
-                std::lock_guard<std::mutex> lock(error_mutex);
-                if (!error) error = std::current_exception();
-                failed = true;
-                return;
-            }
-            progress.row_done(++rows_done);
+        try {
+            for (int row; !failed && (row = next_row++) < rows;) body(row);
+        } catch (...) {
+            std::lock_guard<std::mutex> lock(error_mutex);
+            if (!error) error = std::current_exception();
+            failed = true;
         }
     };
-
     std::vector<std::thread> pool;
     for (int i = 1; i < render_threads(); ++i) pool.emplace_back(worker);
     worker();  // the calling thread works too
     for (auto& t : pool) t.join();
     if (error) std::rethrow_exception(error);
+}
+
+image render(int width, int height, const pixel_shader& shade) {
+    image img(width, height);
+    std::atomic<int> rows_done{0};
+    progress_line progress(height);
+    for_each_row(height, [&](int row) {
+        for (int col = 0; col < width; ++col) img.at(col, row) = shade(col, row);
+        progress.row_done(++rows_done);
+    });
     return img;
 }
 

@@ -6,6 +6,9 @@
 // of a laptop busy even when some rows are much more expensive than others.
 // An exception thrown by shade (for example a stub's "not implemented yet")
 // stops the render and is rethrown to the caller, unchanged.
+//
+// for_each_row is that pool on its own, for renderers that fill the image
+// their own way (tools/render's tiles): the project's one thread pool.
 #pragma once
 
 #include "image.hpp"
@@ -22,5 +25,10 @@ image render(int width, int height, const pixel_shader& shade);
 
 // How many threads render() uses (at least 1).
 int render_threads();
+
+// Calls body(row) once for every row in [0, rows), rows handed out one at a
+// time to render_threads() threads (the caller's thread is one of them).
+// The first exception body throws stops the others and is rethrown here.
+void for_each_row(int rows, const std::function<void(int row)>& body);
 
 }  // namespace rt

@@ -1,13 +1,19 @@
 // scene.hpp — what a picture is made of: shapes, their materials, lights.
 //
 // A scene is plain data. Each shape has a material index; lights are points
-// with an intensity, plus one ambient term. Chapters 03 to 06 build scenes
-// like this in their programs and hand them to the students' code.
+// with an intensity, plus one ambient term. Chapters 03 to 06 read theirs
+// from scenes/chNN-*.json (scene_file.hpp) and hand it to the students' code.
+// Below the data: how an object number names a shape, and the material of a
+// hit (with the checker pattern) - bookkeeping, no intersection or shading.
 #pragma once
 
+#include "hit_record.hpp"
 #include "math.hpp"
 #include "shapes.hpp"
 
+#include <cmath>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace rt {
@@ -40,5 +46,58 @@ struct scene {
     // number a hit_record's `object` field carries.
     int object_count() const { return int(spheres.size() + planes.size() + triangles.size()); }
 };
+
+// Which shape an object number names: object_count() numbers are spheres,
+// then planes, then triangles; index is the position in that kind's list.
+enum class shape_kind { sphere, plane, triangle };
+struct object_ref {
+    shape_kind kind;
+    size_t index;
+};
+
+// Throws std::out_of_range, with a message a student can act on, for a
+// number that names no object (a closest_hit that forgot to set `object`).
+template <class T>
+object_ref locate(const scene<T>& s, int object) {
+    if (!(object >= 0 && object < s.object_count()))
+        throw std::out_of_range("a hit with object index " + std::to_string(object) +
+                                ": the scene loop must set hit.object to the index of the object hit (0 to " +
+                                std::to_string(s.object_count() - 1) + ")");
+    size_t i = size_t(object);
+    if (i < s.spheres.size()) return {shape_kind::sphere, i};
+    i -= s.spheres.size();
+    if (i < s.planes.size()) return {shape_kind::plane, i};
+    return {shape_kind::triangle, i - s.planes.size()};
+}
+
+template <class T>
+int material_index(const scene<T>& s, int object) {
+    const object_ref o = locate(s, object);
+    if (o.kind == shape_kind::sphere) return s.spheres[o.index].material;
+    if (o.kind == shape_kind::plane) return s.planes[o.index].material;
+    return s.triangles[o.index].material;
+}
+
+// m as seen at `point`: a checker material alternates m.diffuse and
+// m.checker_color in unit squares of the x-z plane (meant for horizontal
+// planes such as the ground). Only x and z pick the square: y as well would
+// make the colour flicker on a plane at y = 0, where computed hit points land
+// a rounding error above or below zero at random. m is returned unchanged
+// when it has no pattern or the point is not finite.
+template <class T>
+material material_at(const material& m, const vec3<T>& point) {
+    if (!m.checker || !is_finite(point)) return m;
+    // fmod rather than a cast to an integer: a huge coordinate stays defined.
+    const double squares = std::floor(double(point.x)) + std::floor(double(point.z));
+    material here = m;
+    if (std::fmod(squares, 2.0) != 0.0) here.diffuse = m.checker_color;
+    return here;
+}
+
+// The material at a hit of the scene (hit.object names the object).
+template <class T>
+material material_at(const scene<T>& s, const hit_record<T>& hit) {
+    return material_at(s.materials[size_t(material_index(s, hit.object))], hit.point);
+}
 
 }  // namespace rt

@@ -3,14 +3,18 @@
 #include "common/error_metrics.hpp"
 #include "common/image.hpp"
 #include "common/image_compare.hpp"
+#include "common/chapter_scenes.hpp"
 #include "common/interval.hpp"
+#include "common/object_dispatch.hpp"
 #include "common/ray.hpp"
 #include "common/render.hpp"
+#include "common/scene_file.hpp"
 #include "common/stub.hpp"
 
 #include "test_support.hpp"
 
 #include <cmath>
+#include <atomic>
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
@@ -140,4 +144,103 @@ TEST_CASE("render: a stub's exception reaches the caller unchanged") {
         return color(0);
     };
     CHECK_THROWS_WITH_AS(render(4, 8, shade), "not implemented yet: chapter 00, example", not_implemented);
+}
+
+TEST_CASE("for_each_row: every row once and the first exception stops the pool") {
+    std::vector<std::atomic<int>> seen(50);
+    for_each_row(50, [&](int row) { ++seen[size_t(row)]; });
+    for (const auto& count : seen) CHECK(count.load() == 1);
+    CHECK_THROWS_AS(for_each_row(50, [](int row) { if (row == 7) throw std::runtime_error("row 7"); }),
+                    std::runtime_error);
+}
+
+namespace {
+
+// A scene with two spheres, one plane and one triangle: objects 0 1 | 2 | 3.
+scene<double> one_of_each() {
+    scene<double> s;
+    s.materials.resize(4);
+    s.spheres = {{{0, 0, 0}, 1, 0}, {{5, 0, 0}, 1, 1}};
+    s.planes = {{{0, -1, 0}, {0, 1, 0}, 2}};
+    s.triangles = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 3}};
+    return s;
+}
+
+// Stand-ins for the chapters' tests: each "hits" at t = 10 * kind + index,
+// so the answer names the shape the dispatch picked.
+std::optional<hit_record<double>> fake_hit(double t) {
+    hit_record<double> h;
+    h.t = t;
+    return h;
+}
+
+}  // namespace
+
+TEST_CASE("object_dispatch: spheres then planes then triangles each to its own test") {
+    const scene<double> s = one_of_each();
+    const auto sphere_test = [&](const sphere<double>& x, const ray<double>&, const interval<double>&) {
+        return fake_hit(10 + double(&x - s.spheres.data()));
+    };
+    const auto plane_test = [](const plane<double>&, const ray<double>&, const interval<double>&) { return fake_hit(20); };
+    const auto triangle_test = [](const triangle<double>&, const ray<double>&, const interval<double>&) {
+        return fake_hit(30);
+    };
+    const object_dispatch dispatch(s, sphere_test, plane_test, triangle_test);
+    const ray<double> r{{0, 0, 5}, {0, 0, -1}};
+    const interval<double> range;
+    CHECK(dispatch.count() == 4);
+    CHECK(dispatch(0, r, range)->t == 10);
+    CHECK(dispatch(1, r, range)->t == 11);
+    CHECK(dispatch(2, r, range)->t == 20);
+    CHECK(dispatch(3, r, range)->t == 30);
+    CHECK(dispatch(3, r, range)->object == -1);  // the loop sets it, not the dispatch
+    hit_record<double> h;
+    CHECK(dispatch(2, r, range, h));  // chapter 08's form: the object is set
+    CHECK(h.t == 20);
+    CHECK(h.object == 2);
+    CHECK_THROWS_AS(dispatch(4, r, range), std::out_of_range);
+    CHECK_THROWS_AS(dispatch(-1, r, range), std::out_of_range);
+}
+
+TEST_CASE("object_dispatch: a kind without a test must be absent from the scene") {
+    const scene<double> s = one_of_each();
+    const auto sphere_test = [](const sphere<double>&, const ray<double>&, const interval<double>&) { return fake_hit(1); };
+    CHECK_THROWS_AS(object_dispatch(s, sphere_test), std::invalid_argument);
+    scene<double> spheres_only = s;
+    spheres_only.planes.clear();
+    spheres_only.triangles.clear();
+    const object_dispatch dispatch(spheres_only, sphere_test);
+    CHECK(dispatch.count() == 2);
+    CHECK(dispatch(1, ray<double>{}, interval<double>{})->t == 1);
+}
+
+TEST_CASE("material_at: the checker pattern alternates in unit squares of x and z") {
+    material m;
+    m.diffuse = color(1, 1, 1);
+    m.checker = true;
+    m.checker_color = color(0, 0, 0);
+    CHECK(material_at(m, vec3<double>(0.5, 0.0, 0.5)).diffuse == color(1, 1, 1));
+    CHECK(material_at(m, vec3<double>(1.5, 0.0, 0.5)).diffuse == color(0, 0, 0));
+    CHECK(material_at(m, vec3<double>(-0.5, 0.0, 0.5)).diffuse == color(0, 0, 0));
+    CHECK(material_at(m, vec3<float>(1.5f, -1e-7f, 1.5f)).diffuse == color(1, 1, 1));  // y does not matter
+    CHECK(material_at(m, vec3<double>(1e300, 0, 0.5)).diffuse == color(1, 1, 1));      // huge: still defined
+    m.checker = false;
+    CHECK(material_at(m, vec3<double>(1.5, 0.0, 0.5)).diffuse == color(1, 1, 1));
+}
+
+TEST_CASE("material_at: a hit names its material by its object and a bad object index says what is wrong") {
+    scene<double> s = one_of_each();
+    for (int i = 0; i < 4; ++i) s.materials[size_t(i)].diffuse = color(float(i));
+    hit_record<double> h;
+    h.object = 2;
+    CHECK(material_at(s, h).diffuse == color(2));
+    h.object = -1;
+    CHECK_THROWS_WITH_AS(material_at(s, h), doctest::Contains("must set hit.object"), std::out_of_range);
+}
+
+TEST_CASE("chapter scenes: built in and named after their file and they parse") {
+    const chapter_scene ch03 = chapter_scene_file("ch03");
+    CHECK(ch03.source == "scenes/ch03-overlapping-spheres.json");
+    CHECK(parse_scene(ch03.text, ch03.source).world.spheres.size() == 5);
+    CHECK_THROWS_AS(chapter_scene_file("ch99"), std::invalid_argument);
 }

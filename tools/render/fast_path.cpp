@@ -29,7 +29,7 @@
 
 #include "look.hpp"
 
-#include "checker.hpp"   // chapter 06's given checker pattern
+#include "common/scene.hpp"   // material_at: the checker pattern
 #include "shading.hpp"   // chapter 06's shade(), for lit scenes
 
 #include "common/render.hpp"
@@ -37,11 +37,8 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
-#include <exception>
 #include <functional>
 #include <limits>
-#include <mutex>
-#include <thread>
 #include <type_traits>
 
 namespace rt::render_tool {
@@ -400,30 +397,6 @@ struct context {
     }
 };
 
-// Runs body(i) for i in [0, count) (rows of tiles) on every core; rethrows
-// the first exception.
-template <class F>
-void for_each_row(int count, F&& body) {
-    std::atomic<int> next{0};
-    std::atomic<bool> stop{false};
-    std::exception_ptr error;
-    std::mutex error_mutex;
-    auto worker = [&] {
-        try {
-            for (int row; !stop && (row = next.fetch_add(1)) < count;) body(row);
-        } catch (...) {
-            std::lock_guard<std::mutex> lock(error_mutex);
-            if (!error) error = std::current_exception();
-            stop = true;
-        }
-    };
-    std::vector<std::thread> pool;
-    for (int i = 1; i < render_threads(); ++i) pool.emplace_back(worker);
-    worker();
-    for (auto& t : pool) t.join();
-    if (error) std::rethrow_exception(error);
-}
-
 template <class T, sphere_mode SM, bool Planes, bool Tris, bool Lights>
 image render_with(const scene_description& d, int width, int height, long& rays) {
     const context<T> ctx(d, width, height);
@@ -455,7 +428,7 @@ image render_with(const scene_description& d, int width, int height, long& rays)
                 const vec3<T> origin(p.ox[k], p.oy[k], p.oz[k]), direction(p.dx[k], p.dy[k], p.dz[k]);
                 const vec3<T> point = origin + t[k] * direction;
                 const vec3<T> n = ctx.normal(size_t(object[k]), point, direction);
-                const material m = ch06::material_at(d.world.materials[size_t(ctx.material_of[size_t(object[k])])], point);
+                const material m = material_at(d.world.materials[size_t(ctx.material_of[size_t(object[k])])], point);
                 if constexpr (Lights)
                     out = ch06::shade(point, n, -direction, m, d.world.lights, d.world.ambient, occluded);
                 else
