@@ -2,11 +2,11 @@
 // then a check of every field with an error that says where it is.
 //
 // nlohmann-json tells where a *syntax* error is, but once a file has parsed
-// it no longer knows where each value came from. So after it accepts the
-// text, a small scanner (the `locator` below) walks the same text once and
-// notes the byte offset of every key and value under a path such as
-// "spheres[1].radius". A field that fails a check is then reported at its
-// own line and column.
+// it no longer knows where each value came from. So a small scanner (the
+// `locator` below) walks the same text once and notes the byte offset of
+// every key and value under a path such as "spheres[1].radius". That is the
+// one way a position is found: every error after the syntax check is raised
+// with its field's path, and reported at that field's line and column.
 #include "scene_file.hpp"
 
 #include <nlohmann/json.hpp>
@@ -23,8 +23,24 @@ namespace rt {
 
 using json = nlohmann::json;
 
+namespace {
+
+// A message stays readable whatever the file holds (a 100 KB key, a string
+// of a million characters): each part is cut to a sensible length.
+std::string capped(std::string text, size_t most) {
+    if (text.size() <= most) return text;
+    const size_t cut = text.size() - most;
+    text.resize(most);
+    return text + "... (" + std::to_string(cut) + " more characters)";
+}
+
+}  // namespace
+
 scene_error::scene_error(std::string file, int line, int column, std::string field, std::string problem)
     : std::runtime_error([&] {
+          file = capped(std::move(file), 300);
+          field = capped(std::move(field), 200);
+          problem = capped(std::move(problem), 600);
           std::string where = file;
           if (line > 0) where += ":" + std::to_string(line) + ":" + std::to_string(column);
           return where + ": " + (field.empty() ? "" : field + ": ") + problem;
@@ -67,17 +83,25 @@ public:
         auto it = keys_.find(path);
         return it == keys_.end() ? value_at(path) : it->second;
     }
-    // The path of the value that starts at offset ("" when none does).
-    std::string path_of_value(size_t offset) const {
-        for (const auto& [path, at] : values_)
-            if (at == offset) return path;
-        return "";
+    // Throws the error for the first number too large for a double, if any.
+    void fail_at_overflowing_number() const {
+        std::string first;
+        for (const auto& [path, at] : values_) {
+            const char c = text_[at];
+            if ((c == '-' || (c >= '0' && c <= '9')) && std::isinf(std::strtod(token_at(path, text_.size()).c_str(), nullptr)) &&
+                (first.empty() || at < values_.at(first)))
+                first = path;
+        }
+        if (!first.empty())
+            fail(values_.at(first), first,
+                 "expected a finite number, got " + token_at(first) + " (too large even for a double)");
     }
-    // The value's text as written, e.g. "1e999" for a number too large.
-    std::string token_at(const std::string& path) const {
+    // The value's text as written, e.g. "1e999" for a number too large
+    // (cut at `most` characters).
+    std::string token_at(const std::string& path, size_t most = 40) const {
         size_t start = value_at(path), end = start;
         while (end < text_.size() && !std::strchr(",]} \t\r\n/", text_[end])) ++end;
-        return text_.substr(start, std::min<size_t>(end - start, 40));
+        return text_.substr(start, std::min(end - start, most));
     }
 
 private:
@@ -399,7 +423,29 @@ private:
             fail(member(j, path, "up") ? path + ".up" : path,
                  "the up vector " + format_vector(c.up) +
                      " is parallel to the view direction (eye to look_at); choose an up vector across it");
+        // Whatever the checks above miss, the cameras themselves find: build
+        // them as the renderers will, in both precisions.
+        check_camera_builds<float>(c, j, path, "float");
+        check_camera_builds<double>(c, j, path, "double");
         return c;
+    }
+
+    // A camera that cannot be built in T (its frame or projection degenerates
+    // there) is reported at the field that makes it so.
+    template <class T>
+    void check_camera_builds(const camera_description& c, const json& j, const std::string& path,
+                             const char* precision) const {
+        std::string field = member(j, path, "up") ? path + ".up" : path + ".look_at";
+        try {
+            camera_frame<T>::look_at(convert<T>(c.eye), convert<T>(c.look_at), convert<T>(c.up));
+            const char* size = c.type == camera_description::kind::pinhole ? "fov" : "view_height";
+            field = member(j, path, size) ? path + "." + size : path;
+            scene_camera<T> built(c);
+        } catch (const std::invalid_argument& e) {
+            std::string problem = e.what();
+            if (problem.rfind("camera: ", 0) == 0) problem.erase(0, 8);
+            fail(field, problem + " when the camera is built in " + precision);
+        }
     }
 
     void read_materials(scene_description& d) const {
@@ -547,32 +593,6 @@ std::string syntax_problem(const std::string& what) {
     return problem.empty() ? "syntax error" : problem;
 }
 
-// nlohmann-json stops at a number too large for a double (such as 1e400)
-// without saying where it is. Finds the number's text from the start
-// `from` on: the first occurrence that stands alone as a token.
-size_t find_number_token(const std::string& text, const std::string& token, size_t from) {
-    size_t i = from;
-    while (i < text.size()) {
-        char c = text[i];
-        if (c == '"') {  // skip a string, escapes included
-            for (++i; i < text.size() && text[i] != '"'; i += text[i] == '\\' ? 2 : 1) {
-            }
-            ++i;
-        } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') {
-            while (i < text.size() && text[i] != '\n' && text[i] != '\r') ++i;
-        } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
-            size_t end = text.find("*/", i + 2);
-            i = end == std::string::npos ? text.size() : end + 2;
-        } else if (text.compare(i, token.size(), token) == 0 &&
-                   (i + token.size() == text.size() || std::strchr(",]} \t\r\n/", text[i + token.size()]))) {
-            return i;
-        } else {
-            ++i;
-        }
-    }
-    return std::string::npos;
-}
-
 }  // namespace
 
 scene_description parse_scene(const std::string& text, const std::string& source) {
@@ -582,46 +602,23 @@ scene_description parse_scene(const std::string& text, const std::string& source
         auto [line, column] = line_and_column(text, nul);
         throw scene_error(source, line, column, "", "a NUL byte: a scene file must be text");
     }
-    // Numbers too large for a double are blanked out (same length, so every
-    // offset stays put) and reported once the rest is known to be valid
-    // JSON, at their field.
-    std::string patched = text;
-    size_t first_overflow = std::string::npos;
-    std::string overflow_token;
+    // A UTF-8 byte-order mark is not part of the scene; dropping it keeps
+    // line 1's columns the ones an editor shows.
+    const std::string& body = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? text.substr(3) : text;
     json doc;
-    for (;;) {
-        try {
-            doc = json::parse(patched, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
-            break;
-        } catch (const json::parse_error& e) {
-            size_t offset = e.byte > 0 ? size_t(e.byte - 1) : 0;
-            auto [line, column] = line_and_column(text, offset);
-            throw scene_error(source, line, column, "", "not valid JSON: " + syntax_problem(e.what()));
-        } catch (const json::out_of_range& e) {
-            // "... number overflow parsing '1e400'"
-            std::string what = e.what();
-            size_t open = what.find('\''), close = what.rfind('\'');
-            size_t at = std::string::npos;
-            std::string token;
-            if (open != std::string::npos && close > open + 1) {
-                token = what.substr(open + 1, close - open - 1);
-                at = find_number_token(patched, token, 0);
-            }
-            if (at == std::string::npos) throw scene_error(source, 0, 0, "", "not valid JSON: " + what);
-            if (first_overflow == std::string::npos) first_overflow = at, overflow_token = token;
-            patched.replace(at, token.size(), "0" + std::string(token.size() - 1, ' '));
-        } catch (const json::exception& e) {
-            throw scene_error(source, 0, 0, "", std::string("not valid JSON: ") + e.what());
-        }
+    try {
+        doc = json::parse(body, nullptr, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+    } catch (const json::parse_error& e) {
+        auto [line, column] = line_and_column(body, e.byte > 0 ? size_t(e.byte - 1) : 0);
+        throw scene_error(source, line, column, "", "not valid JSON: " + syntax_problem(e.what()));
+    } catch (const json::out_of_range&) {
+        // A number too large for a double (such as 1e400): nlohmann-json
+        // stops there without saying where, so the locator finds it.
+        const locator where(body, source);
+        where.fail_at_overflowing_number();
+        throw scene_error(source, 0, 0, "", "not valid JSON: a number too large for a double");
     }
-    if (first_overflow != std::string::npos) {
-        // Name the field through the locator of the patched text.
-        locator where(patched, source);
-        auto [line, column] = line_and_column(text, first_overflow);
-        throw scene_error(source, line, column, where.path_of_value(first_overflow),
-                          "expected a finite number, got " + overflow_token + " (too large even for a double)");
-    }
-    return reader(text, source, doc).read();
+    return reader(body, source, doc).read();
 }
 
 scene_description load_scene_file(const std::string& path) {

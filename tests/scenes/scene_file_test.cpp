@@ -320,3 +320,34 @@ TEST_CASE("a comment ended by a carriage return is read as nlohmann-json reads i
     scene_description d = parse_scene(std::string("// first line\r{") + minimal_camera + "}", "t.json");
     CHECK(d.camera.eye == vec3d(0, 0, 5));
 }
+
+TEST_CASE("a UTF-8 byte-order mark is skipped and columns on line 1 stay the ones an editor shows") {
+    const std::string scene = std::string("{") + minimal_camera + "}";
+    CHECK(parse_scene("\xEF\xBB\xBF" + scene, "bom.json").camera.eye.z == 5);
+    scene_error e = error_of("\xEF\xBB\xBF" R"({"camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0], "fov": -1}})");
+    CHECK(e.field() == "camera.fov");
+    CHECK(e.line() == 1);
+    CHECK(e.column() == 60);  // counted from the '{', as without the mark
+}
+
+TEST_CASE("an error message stays short whatever the file holds") {
+    const std::string long_key(100000, 'k');
+    scene_error e = error_of(std::string("{") + minimal_camera + R"(, ")" + long_key + R"(": 1})");
+    CHECK(std::string(e.what()).size() < 1500);
+    CHECK(contains(e.what(), "more characters"));
+    CHECK(contains(e.what(), "unknown key"));
+
+    const std::string long_number = "1" + std::string(500, '0');  // 1e500: too large for a double
+    scene_error big = error_of(std::string("{") + minimal_camera + R"(, "spheres": [{"center": [0, 0, 0], "radius": )" +
+                               long_number + "}]}");
+    CHECK(big.field() == "spheres[0].radius");
+    CHECK(std::string(big.what()).size() < 1500);
+}
+
+TEST_CASE("a camera that degenerates only in float is named with its field") {
+    scene_error e = error_of(
+        R"({"camera": {"type": "orthographic", "eye": [0, 0, 5], "look_at": [0, 0, 0], "view_height": 1e-50}})");
+    CHECK(e.field() == "camera.view_height");
+    CHECK(e.line() == 1);
+    CHECK(contains(e.problem(), "in float"));
+}
