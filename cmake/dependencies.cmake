@@ -18,15 +18,19 @@ rt_require_package(doctest_FOUND "doctest (the unit-test framework)" doctest-dev
 find_package(CLI11 CONFIG QUIET)
 rt_require_package(CLI11_FOUND "CLI11 (command-line parsing)" libcli11-dev)
 
-find_path(STB_INCLUDE_DIR stb/stb_image_write.h)
-find_library(STB_LIBRARY NAMES stb)
-if(STB_INCLUDE_DIR AND STB_LIBRARY)
-  set(STB_FOUND TRUE)
-endif()
+# stb and MPFR ship no CMake package, but Debian gives both a pkg-config
+# file: that is how they are found (pkg-config itself is Debian's pkgconf).
+find_package(PkgConfig QUIET)
+rt_require_package(PKG_CONFIG_FOUND "pkg-config (finds stb and MPFR)" pkgconf)
+
+pkg_check_modules(STB QUIET IMPORTED_TARGET stb)
 rt_require_package(STB_FOUND "stb_image and stb_image_write" libstb-dev)
 add_library(rt_stb INTERFACE)
-target_include_directories(rt_stb SYSTEM INTERFACE "${STB_INCLUDE_DIR}")
-target_link_libraries(rt_stb INTERFACE "${STB_LIBRARY}")
+target_link_libraries(rt_stb INTERFACE PkgConfig::STB)
+
+# MPFR is needed only by the formulation study and the numerics tests
+# (tools/study/CMakeLists.txt requires it there): PkgConfig::MPFR when found.
+pkg_check_modules(MPFR QUIET IMPORTED_TARGET mpfr)
 
 # GLM's own target name differs between versions.
 if(TARGET glm::glm)
