@@ -96,20 +96,22 @@ vec3<T> reciprocal(const vec3<T>& d) {
     return {T(1) / d.x, T(1) / d.y, T(1) / d.z};
 }
 
-// How the slab test widens its exit (README, "A conservative slab test").
-// Every slab parameter it computes is (p - o) * (1/d): three roundings, so it
-// is within a factor (1 +- gamma(3)) of the exact value, gamma(n) = n u / (1 - n u)
-// with u = epsilon / 2 the unit roundoff. An entry rounded up and an exit
-// rounded down can cross although the exact ones do not; moving the exit
-// outwards by 2 gamma(3) of its magnitude (6 u, plus the rounding of the
-// widening itself: 8 u = 4 epsilon is enough, README) undoes that:
-//     widened exit = exit * slab_widen_up<T>    when exit >= 0,
-//                    exit * slab_widen_down<T>  when exit <  0.
-// Both constants are exact in T; infinities stay infinities.
+// widen_exit — moves a slab test's exit outwards by 4 epsilons of its
+// magnitude (README, "A conservative slab test"). Every slab parameter is
+// (p - o) * (1/d): three roundings, so it is within a factor (1 +- gamma(3))
+// of the exact value, gamma(n) = n u / (1 - n u) with u = epsilon / 2 the unit
+// roundoff. An entry rounded up and an exit rounded down can cross although
+// the exact ones do not; moving the exit outwards by 2 gamma(3) of its
+// magnitude (6 u, plus the rounding of this very multiplication: 8 u = 4
+// epsilon is enough) undoes that. Both factors are exact in T; infinities
+// stay infinities. The traversal uses the same widening when it compares a
+// stored entry with the closest hit so far.
 template <class T>
-inline constexpr T slab_widen_up = T(1) + T(4) * std::numeric_limits<T>::epsilon();
-template <class T>
-inline constexpr T slab_widen_down = T(1) - T(4) * std::numeric_limits<T>::epsilon();
+T widen_exit(T exit) {
+    constexpr T up = T(1) + T(4) * std::numeric_limits<T>::epsilon();
+    constexpr T down = T(1) - T(4) * std::numeric_limits<T>::epsilon();
+    return exit >= T(0) ? exit * up : exit * down;
+}
 
 // intersect_box — the slab test. Does the ray meet the box inside the range?
 //
@@ -127,8 +129,7 @@ inline constexpr T slab_widen_down = T(1) - T(4) * std::numeric_limits<T>::epsil
 //   the parameter at which the ray enters the box, clamped to the range:
 //       entry = max(range.min, the largest of the three slab entries)
 //   when entry <= exit, where
-//       exit  = min(range.max, the smallest of the three slab exits),
-//               then widened outwards (slab_widen_up / slab_widen_down above),
+//       exit  = widen_exit(min(range.max, the smallest of the three slab exits)),
 //   and std::nullopt otherwise (the box is missed, or it lies entirely before
 //   range.min or beyond range.max).
 //   The slab of axis k is lo.k <= o.k + t d.k <= hi.k; its entry and exit are

@@ -139,7 +139,9 @@ bvh<T> build_sah(const std::vector<aabb<T>>& boxes, const build_options& options
 //     (range.min, t of the best hit so far), is skipped with all below it.
 //   * Of two children, the one entered first (smaller entry) is visited
 //     first; the other is visited afterwards only if its entry is still
-//     <= the best t found by then.
+//     <= widen_exit(best t found by then), the very comparison intersect_box
+//     would make (an object's reported t can lie a rounding below its box's
+//     entry: an unwidened comparison would lose it).
 //   * In a leaf, every object is asked for hits up to and including the best
 //     t so far (a hit at exactly that t can still win by a lower index).
 //   * An empty tree is a miss, and intersect is never called.

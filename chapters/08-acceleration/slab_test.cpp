@@ -15,8 +15,8 @@ std::optional<T> intersect_box(const aabb<T>& box, const ray<T>& r, const vec3<T
     // (plane - origin[k]) * inv_direction[k]; the smaller is this slab's
     // entry, the larger its exit. Keep the largest entry and the smallest exit,
     // writing each comparison so that a NaN (0 * infinity) changes nothing.
-    // Finally widen the exit outwards (slab_widen_up / slab_widen_down) and
-    // compare: entry <= exit is a hit at `entry`.
+    // Finally widen the exit outwards (widen_exit) and compare: entry <= exit
+    // is a hit at `entry`.
     (void)box;
     (void)r;
     (void)inv_direction;

@@ -5,16 +5,6 @@
 
 namespace rt::ch08 {
 
-namespace {
-
-// Moves an exit outwards by 4 epsilons of its magnitude (aabb.hpp).
-template <class T>
-T widen(T exit) {
-    return exit >= T(0) ? exit * slab_widen_up<T> : exit * slab_widen_down<T>;
-}
-
-}  // namespace
-
 template <class T>
 std::optional<T> intersect_box(const aabb<T>& box, const ray<T>& r, const vec3<T>& inv_direction,
                                const interval<T>& range) {
@@ -35,7 +25,7 @@ std::optional<T> intersect_box(const aabb<T>& box, const ray<T>& r, const vec3<T
         entry = t_near > entry ? t_near : entry;
         exit = t_far < exit ? t_far : exit;
     }
-    return entry <= widen(exit) ? std::optional<T>(entry) : std::nullopt;
+    return entry <= widen_exit(exit) ? std::optional<T>(entry) : std::nullopt;
 }
 
 template std::optional<float> intersect_box(const aabb<float>&, const ray<float>&, const vec3<float>&,

@@ -62,8 +62,10 @@ std::optional<hit_record<T>> closest_hit(const bvh<T>& tree, const object_inters
     while (!stack.empty()) {
         const pending<T> p = stack.back();
         stack.pop_back();
-        // Re-check: a hit found since this node was pushed may lie before its entry.
-        if (best && p.entry > best->t) continue;
+        // Re-check: a hit found since this node was pushed may lie before its
+        // entry. Widened exactly as intersect_box widens its exit, so this is
+        // the box test against the new best, without redoing it.
+        if (best && p.entry > widen_exit(best->t)) continue;
         const bvh_node<T>& n = tree.nodes[size_t(p.node)];
         if (n.is_leaf()) {
             visit_leaf(tree, n, intersect, r, range, best);

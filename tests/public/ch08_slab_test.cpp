@@ -169,5 +169,5 @@ TEST_CASE_TEMPLATE("the exit is widened: a box the ray crosses is never missed t
                                       << " rays that cross this flat box (exactly, from their rounded inputs) were "
                                          "reported as misses. Each slab parameter (p - o) * (1/d) is rounded three "
                                          "times: widen the exit outwards by 4 epsilons of its magnitude "
-                                         "(slab_widen_up / slab_widen_down) before comparing it with the entry");
+                                         "(widen_exit) before comparing it with the entry");
 }
