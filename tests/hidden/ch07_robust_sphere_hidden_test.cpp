@@ -53,6 +53,14 @@ reference exact_roots(const sphere<T>& s, const ray<T>& r) {
     reference ref;
     const wide fx = wide(r.origin.x) - wide(s.center.x), fy = wide(r.origin.y) - wide(s.center.y),
                fz = wide(r.origin.z) - wide(s.center.z);
+    // What the long double subtraction lost (two-sum): o - C of two doubles
+    // can need more than long double's 64 bits, and c needs all of them.
+    const auto lost = [](wide o, wide C, wide f) {
+        const wide bp = f - o;
+        return (o - (f - bp)) + (-C - bp);
+    };
+    const wide lx = lost(r.origin.x, s.center.x, fx), ly = lost(r.origin.y, s.center.y, fy),
+               lz = lost(r.origin.z, s.center.z, fz);
     const wide dx = r.direction.x, dy = r.direction.y, dz = r.direction.z, R = s.radius;
     const wide a = dx * dx + dy * dy + dz * dz;
     const wide hb = fx * dx + fy * dy + fz * dz;
@@ -73,7 +81,7 @@ reference exact_roots(const sphere<T>& s, const ray<T>& r) {
         err += (sum - (t - bp)) + (hi[i] - bp) + lo[i];
         sum = t;
     }
-    const wide c = sum + err;
+    const wide c = sum + (err + 2 * (fx * lx + fy * ly + fz * lz));
     const wide q = -(hb + std::copysign(std::sqrt(disc), hb));
     wide x0 = q == 0 ? 0 : c / q, x1 = q / a;
     ref.real = true;
@@ -476,4 +484,129 @@ TEST_CASE_TEMPLATE("hidden: bad input is a miss never a NaN", T, RT_SCALARS) {
               !intersect_sphere_robust(s, good, interval<T>{0, nan});
     CHECK_MESSAGE(ok, "bad input (zero or infinite direction, NaN anywhere, radius not positive, NaN range) must be "
                       "a miss, never a NaN hit");
+}
+
+// Issue 11 and issue 9: the cases the earlier suite never built.
+
+TEST_CASE_TEMPLATE("hidden: half_b exactly 0 (from the centre, or from inside at right angles)", T, RT_SCALARS) {
+    // Centre (10, -20, 30), radius 2.5; |(3, 4, 0)| = 5, so from the centre t = 2.5 / 5 = 0.5 both ways.
+    const sphere<T> s{{10, -20, 30}, T(2.5)};
+    auto from_centre = intersect_sphere_robust(s, ray<T>{{10, -20, 30}, {3, 4, 0}}, ahead<T>());
+    const bool centre_ok = from_centre && from_centre->t == T(0.5);
+    CHECK_MESSAGE(centre_ok, "from the centre half_b = f.d = 0: q = -(0 + sqrt(disc/4)) is not 0 (only a tangent makes "
+                             "it 0), and the roots c / q, q / a are -t and +t; the hit is the positive one");
+    // 1.5 off the centre along y, moving along (4, 0, 3): half_b = 0 again, t = sqrt(2.5^2 - 1.5^2) / 5 = 0.4.
+    auto sideways = intersect_sphere_robust(s, ray<T>{{10, T(-18.5), 30}, {4, 0, 3}}, ahead<T>());
+    const bool side_ok = sideways && ulps(sideways->t, wide(0.4L)) <= 1;
+    CHECK_MESSAGE(side_ok, "from inside, at right angles to the radius, half_b = 0 and the roots are +-0.4; a special "
+                           "case for half_b == 0 (or a sign(half_b) that is 0) loses this hit");
+    // And the same with the range (-inf, inf): the smaller root, -0.4.
+    auto both = intersect_sphere_robust(s, ray<T>{{10, T(-18.5), 30}, {4, 0, 3}},
+                                        interval<T>{-infinity<T>, infinity<T>});
+    const bool both_ok = both && ulps(both->t, wide(-0.4L)) <= 1;
+    CHECK_MESSAGE(both_ok, "with half_b = 0 and the whole line as range, the smaller root -0.4 is the answer");
+}
+
+TEST_CASE_TEMPLATE("hidden: huge spheres whose centre is off every axis, seen from close above", T, RT_SCALARS) {
+    // The centre lies along a general direction from the origin, so every
+    // coordinate of f = o - C is huge and cancels in c: a c that is careful
+    // with one coordinate only is caught here.
+    std::mt19937_64 rng(7011);
+    std::uniform_real_distribution<double> height(0.01, 1), angle(-1.4, 0.1), spin(0, 6.283185307179586);
+    int wrong = 0, bad_t = 0, checked = 0;
+    for (double R : {1e4, 1e6}) {
+        for (int i = 0; i < 400; ++i) {
+            const vec3d up = convert<double>(random_direction<double>(rng));
+            const vec3d u = perpendicular(up, rng), v = cross(up, u);
+            const double h = height(rng), el = angle(rng), az = spin(rng);
+            const sphere<T> s{convert<T>(up * -(R + h)), T(R)};
+            const vec3d dir = std::sin(el) * up + std::cos(el) * (std::cos(az) * u + std::sin(az) * v);
+            const ray<T> r{{0, 0, 0}, convert<T>(dir)};
+            const reference ref = exact_roots(s, r);
+            if (std::fabs(ref.l_over_r - 1) < 1e-6L) continue;  // the horizon: too sensitive to judge
+            auto want = expected_t(ref, 0, infinity<wide>);
+            ++checked;
+            auto got = intersect_sphere_robust(s, r, ahead<T>());
+            if (got.has_value() != want.has_value()) ++wrong;
+            else if (got && want && *want < 8 * h && ulps(got->t, *want) > 4) ++bad_t;
+        }
+    }
+    CHECK_MESSAGE(checked > 600, "off-axis ground: too few cases (a test problem, not yours)");
+    const bool ok = wrong == 0;
+    CHECK_MESSAGE(ok, "off-axis huge spheres: hits and misses below and above the horizon were confused");
+    const bool ok_t = bad_t == 0;
+    CHECK_MESSAGE(ok_t, "off-axis huge spheres: t is off by more than 4 ULPs; with the centre off the axes all three "
+                        "squares of f.f - r^2 cancel together (keep every low half), and f = o - C must be exact");
+}
+
+TEST_CASE_TEMPLATE("hidden: spheres at the limits of the format, and subnormal directions", T, RT_SCALARS) {
+    std::mt19937_64 rng(7012);
+    std::uniform_real_distribution<double> coord(-4, 4), radius(0.5, 2);
+    const std::vector<double> scales = sizeof(T) == sizeof(float) ? std::vector<double>{1e-30, 1e-34, 1e30, 1e34}
+                                                                  : std::vector<double>{1e-200, 1e-290, 1e200, 1e290};
+    int wrong = 0, bad_t = 0, checked = 0;
+    for (double scale : scales) {
+        for (int i = 0; i < 300; ++i) {
+            const sphere<T> s{convert<T>(vec3d(coord(rng), coord(rng), coord(rng)) * scale), T(radius(rng) * scale)};
+            const ray<T> r{convert<T>(vec3d(coord(rng), coord(rng), coord(rng)) * scale), random_direction<T>(rng)};
+            const reference ref = exact_roots(s, r);
+            if (std::fabs(ref.l_over_r - 1) < 1e-3L) continue;
+            auto want = expected_t(ref, 0, infinity<wide>);
+            if (want && *want < 1e-3L * wide(s.radius)) continue;
+            ++checked;
+            auto got = intersect_sphere_robust(s, r, ahead<T>());
+            if (got.has_value() != want.has_value()) ++wrong;
+            else if (got && ulps(got->t, *want) > 4) ++bad_t;
+        }
+    }
+    // Subnormal directions: a unit-sized scene, the direction 2^(min_exponent - 10) long.
+    const T tiny = std::ldexp(T(1), std::numeric_limits<T>::min_exponent - 10);
+    for (int i = 0; i < 200; ++i) {
+        const sphere<T> s{convert<T>(vec3d(coord(rng), coord(rng), coord(rng)) * 1e-20), T(radius(rng) * 1e-20)};
+        const ray<T> r{convert<T>(vec3d(coord(rng), coord(rng), coord(rng)) * 1e-20), random_direction<T>(rng) * tiny};
+        const reference ref = exact_roots(s, r);
+        if (std::fabs(ref.l_over_r - 1) < 1e-3L) continue;
+        auto want = expected_t(ref, 0, infinity<wide>);
+        ++checked;
+        auto got = intersect_sphere_robust(s, r, ahead<T>());
+        if (got.has_value() != want.has_value()) ++wrong;
+        else if (got && ulps(got->t, *want) > 4) ++bad_t;
+    }
+    CHECK_MESSAGE(checked > 1000, "extreme scales: too few cases (a test problem, not yours)");
+    const bool ok = wrong == 0;
+    CHECK_MESSAGE(ok, "spheres of radius near the limits of T (squares under- or overflow) or rays with a subnormal "
+                      "direction were hit or missed wrongly: scale f, r and d by powers of two first, and call a "
+                      "direction zero only when its components are");
+    const bool ok_t = bad_t == 0;
+    CHECK_MESSAGE(ok_t, "extreme scales: t is off by more than 4 ULPs (undo the scaling: t = t' 2^(ed - ef))");
+}
+
+TEST_CASE_TEMPLATE("hidden: rays leaving a surface (shadow and reflection rays) keep their few ULPs", T, RT_SCALARS) {
+    // Origins on the surface, rounded to T (so a hair inside or outside),
+    // leaving it: the far root is ~0 and c = f.f - r^2 is all cancellation.
+    std::mt19937_64 rng(7013);
+    std::uniform_real_distribution<double> coord(-8, 8), radius(0.5, 3), lean(-0.9, 0.9);
+    int wrong = 0, bad_t = 0, checked = 0;
+    for (int i = 0; i < 3000; ++i) {
+        const vec3d c(coord(rng), coord(rng), coord(rng));
+        const double R = i % 3 == 0 ? 1e5 : radius(rng);
+        const vec3d n = convert<double>(random_direction<double>(rng)), u = perpendicular(n, rng);
+        const sphere<T> s{convert<T>(c), T(R)};
+        const bool outward = i % 2 == 0;
+        const vec3d dir = (outward ? n : -n) + lean(rng) * u;
+        const ray<T> r{convert<T>(c + R * n), convert<T>(dir)};
+        const reference ref = exact_roots(s, r);
+        if (std::fabs(ref.l_over_r - 1) < 1e-3L) continue;
+        auto want = expected_t(ref, 0, infinity<wide>);
+        ++checked;
+        auto got = intersect_sphere_robust(s, r, ahead<T>());
+        if (got.has_value() != want.has_value()) ++wrong;
+        else if (got && ulps(got->t, *want) > 4) ++bad_t;
+    }
+    CHECK_MESSAGE(checked > 2000, "secondary rays: too few cases (a test problem, not yours)");
+    const bool ok = wrong == 0;
+    CHECK_MESSAGE(ok, "rays starting on the surface (rounded) and leaving it: the sign of c = f.f - r^2 says whether "
+                      "the origin is inside, and a c that is not accurate to its last bits gets it wrong");
+    const bool ok_t = bad_t == 0;
+    CHECK_MESSAGE(ok_t, "rays starting on the surface: t is off by more than 4 ULPs (c / q needs c accurate, f exact)");
 }

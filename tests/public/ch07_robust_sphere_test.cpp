@@ -99,9 +99,11 @@ TEST_CASE_TEMPLATE("the huge ground sphere is hit accurately from 1 unit above",
     const ray<T> down{{0, 1, 0}, {0, -1, 0}};
     auto hit = intersect_sphere_robust(ground<T>(), down, ahead<T>());
     CHECK_MESSAGE(ulps_from(hit, 1.0L) <= 2,
-                  "straight down from 1 unit above, the ground is at t = 1. The near root (-b - sqrt(b^2 - 4ac)) / "
-                  "2a subtracts two numbers close to 2e6 here: catastrophic cancellation. Use the stable pair "
-                  "q = -(b + sign(b) sqrt(...)) / 2, t = c / q. Got "
+                  "straight down from 1 unit above, the ground is at t = 1. Here half_b = -(1e6 + 1) and "
+                  "disc/4 = r^2 are exact, so even -half_b - sqrt(disc/4) gives exactly 1: a wrong t comes from "
+                  "c = f.f - r^2, which cancels (f.f and r^2 agree in their first six digits; float keeps each to a "
+                  "spacing of 65536). Keep the low halves of the squares (std::fma) and add them with a compensated "
+                  "sum. Got "
                       << describe(t_of(hit)));
 
     // Slanted rays: down at 45 degrees, then shallower, then off to the side.
@@ -249,4 +251,53 @@ TEST_CASE_TEMPLATE("bad input is a miss never a NaN", T, RT_SCALARS) {
     CHECK_MESSAGE(!intersect_sphere_robust(sphere<T>{{0, 0, -4}, T(-1)}, ray<T>{{0, 0, 0}, {0, 0, -1}}, ahead<T>())
                        .has_value(),
                   "a negative radius is no sphere: a miss");
+}
+
+namespace {
+// A power of two at the edge of T's range where squares under- or overflow
+// (2^-100 ~ 7.9e-31 and 2^100 in float, 2^-664 ~ 1e-200 and 2^664 in double).
+template <class T>
+T extreme_scale(bool huge) {
+    const int e = sizeof(T) == sizeof(float) ? 100 : 664;
+    return std::ldexp(T(1), huge ? e : -e);
+}
+}  // namespace
+
+TEST_CASE_TEMPLATE("tiny and huge spheres are found by scaling with powers of two", T, RT_SCALARS) {
+    // The lecture's 4-units-away unit sphere, shrunk or blown up by s: every
+    // input is s times a small number, so the exact hits are s times the
+    // unscaled ones. r^2 = s^2 under- or overflows T: without step 0
+    // (scaling f and r by a power of two) these spheres vanish or fill the sky.
+    for (bool huge : {false, true}) {
+        const T s = extreme_scale<T>(huge);
+        const sphere<T> sp{{0, 0, -4 * s}, s};
+        auto centre = intersect_sphere_robust(sp, ray<T>{{0, 0, 0}, {0, 0, -1}}, ahead<T>());
+        CHECK_MESSAGE(ulps_from(centre, 3.0L * static_cast<long double>(s)) <= 4,
+                      "a sphere of radius " << double(s) << " at 4 radii: the hit is at t = 3 radii. r^2 = "
+                                            << double(s) * double(s) << " in T; scale f and r by 2^k first. Got "
+                                            << describe(t_of(centre)));
+        auto side = intersect_sphere_robust(sp, ray<T>{{0, s / 2, 0}, {0, 0, -1}}, ahead<T>());
+        CHECK_MESSAGE(ulps_from(side, (4.0L - std::sqrt(0.75L)) * static_cast<long double>(s)) <= 4,
+                      "half a radius off the axis the hit is at t = (4 - sqrt(0.75)) radii; got " << describe(t_of(side)));
+        auto beside = intersect_sphere_robust(sp, ray<T>{{0, s * T(1.0078125), 0}, {0, 0, -1}}, ahead<T>());
+        CHECK_MESSAGE(!beside.has_value(), "a ray passing 1.0078125 radii from the centre misses; got "
+                                               << describe(t_of(beside)));
+        // A direction as small (or large) as the sphere: t = 3.
+        auto slow = intersect_sphere_robust(sp, ray<T>{{0, 0, 0}, {0, 0, -s}}, ahead<T>());
+        CHECK_MESSAGE(ulps_from(slow, 3.0L) <= 4, "with direction (0, 0, -" << double(s) << ") the hit is at t = 3; "
+                                                  "a = d.d under- or overflows: scale d by its own power of two. Got "
+                                                      << describe(t_of(slow)));
+    }
+}
+
+TEST_CASE_TEMPLATE("a subnormal direction is not a zero direction", T, RT_SCALARS) {
+    // d = 2^(min_exponent - 20): below the smallest normal number, so d.d is
+    // 0 in T, but the ray still moves. The sphere is small enough for t to fit.
+    const T d = std::ldexp(T(1), std::numeric_limits<T>::min_exponent - 20);
+    const T s = std::ldexp(T(1), std::numeric_limits<T>::min_exponent + 30);
+    auto hit = intersect_sphere_robust(sphere<T>{{0, 0, -4 * s}, s}, ray<T>{{0, 0, 0}, {0, 0, -d}}, ahead<T>());
+    CHECK_MESSAGE(ulps_from(hit, 3.0L * static_cast<long double>(s) / static_cast<long double>(d)) <= 4,
+                  "the direction (0, 0, -" << double(d) << ") is tiny, not zero: the hit is at t = 3 * 2^50. A test "
+                  "like a = d.d > 0 calls it zero because d.d underflows; test the components, and scale. Got "
+                      << describe(t_of(hit)));
 }
