@@ -555,3 +555,59 @@ TEST_CASE_TEMPLATE("hidden: small blockers near the surface still cast shadows",
     CHECK_MESSAGE(ok, "a small object close above a surface must shadow it: the shadow ray's offset must stay "
                       "far smaller than the scene (a fixed epsilon can step over small blockers)");
 }
+
+// Catches: a shade() that drops to ambient as soon as ANY light is blocked
+// (`return ambient * diffuse` instead of `continue`), and one that stops at
+// the first blocked light (`break`). Every unit test above blocks all lights
+// or none, where both mistakes give the right answer.
+TEST_CASE_TEMPLATE("hidden: only the blocked lights lose their light", T, RT_SCALARS) {
+    random_source<T> rnd(615);
+    bool ok = true;
+    const material m = glossy(color(0.6f, 0.5f, 0.4f), color(0.3f), 16);
+    for (int i = 0; i < 200 && ok; ++i) {
+        // The viewer on the normal's side, so shade() keeps the normal as it is.
+        const vec3<T> p = rnd.direction(T(0.1), T(5)), n = rnd.direction();
+        const vec3<T> v = normalize(n) + rnd.direction(T(0.1), T(0.5));
+        std::vector<point_light> lights;
+        while (lights.size() < 3) {  // three lights above the surface, so each one counts
+            const vec3<T> l = p + rnd.direction(T(1), T(5));
+            if (dot(l - p, n) > T(0.2) * length(l - p) * length(n))
+                lights.push_back({convert<double>(l), color(2.0f + float(lights.size()), 3.0f, 1.0f)});
+        }
+        // Block exactly one light: the one whose shadow ray heads for it.
+        const size_t blocked = size_t(i % 3);
+        const vec3<T> target = convert<T>(lights[blocked].position);
+        const ch06::occlusion_test<T> blocks_one = [&](const ray<T>& r, const interval<T>& range) {
+            const vec3<T> end = r.at(range.max);
+            return ld_len(vec3<T>(end - target)) <= 1e-3L * (1 + ld_len(target));
+        };
+        std::vector<point_light> open;
+        for (size_t k = 0; k < lights.size(); ++k)
+            if (k != blocked) open.push_back(lights[k]);
+        const color amb(0.1f);
+        const color got = ch06::shade(p, n, v, m, lights, amb, blocks_one);
+        const color want = ch06::shade(p, n, v, m, open, amb, nothing_blocks<T>());
+        ok = colour_agrees(got, want.r, want.g, want.b) && !colour_agrees(got, 0.06L, 0.05L, 0.04L);
+    }
+    CHECK_MESSAGE(ok, "each light is shadowed on its own: a blocked light adds nothing, and every other light "
+                      "still adds its part (skip the blocked light, do not stop or fall back to ambient)");
+}
+
+// Catches: an offset of `offset * normal` without dividing by |normal|, so a
+// long normal pushes the origin far off the surface (small blockers are
+// missed) and a short one leaves it in the surface (shadow acne). The header
+// allows a normal of any length.
+TEST_CASE_TEMPLATE("hidden: the shadow offset does not grow or shrink with the normal's length", T, RT_SCALARS) {
+    random_source<T> rnd(616);
+    bool ok = true;
+    for (int i = 0; i < 500 && ok; ++i) {
+        const vec3<T> p = rnd.direction(T(1e-1), T(1e3)), to_light = rnd.direction();
+        const vec3<T> unit_n = normalize(rnd.direction());
+        const T stretch = i % 2 == 0 ? T(1e3) * rnd.uniform(1, 10) : T(1e-3) * rnd.uniform(1, 10);
+        const ld moved_unit = ld_len(vec3<T>(ch06::shadow_ray_origin(p, unit_n, to_light) - p));
+        const ld moved_long = ld_len(vec3<T>(ch06::shadow_ray_origin(p, unit_n * stretch, to_light) - p));
+        ok = moved_unit > 0 && moved_long <= 2 * moved_unit && moved_long >= 0.5L * moved_unit;
+    }
+    CHECK_MESSAGE(ok, "the normal gives only the direction of the shadow ray's offset: its length must not "
+                      "change how far the origin moves");
+}

@@ -79,6 +79,67 @@ int self_shadowed_hits(const sphere<T>& s, const vec3<T>& eye, const vec3<T>& li
     return acne;
 }
 
+
+// --- what a wrong answer points to ------------------------------------------------
+// ctest may run these tests in any order (it starts the slow ones first), so
+// a shade() test's message must not blame the idea its test was written for
+// when the numbers point elsewhere. shade() is built from the smaller
+// functions, so these probes ask each of them one easy question and name the
+// first classic mistake they find (empty when none): a wrong falloff is then
+// not reported for a Lambert term that was never normalised.
+template <class T>
+std::string building_block_diagnosis() {
+    const vec3<T> up(0, 1, 0);
+    const T straight_up = ch06::lambert(up, vec3<T>(0, 5, 0));
+    if (!close(straight_up, T(1)))
+        return " [lambert() gives " + std::to_string(double(straight_up)) +
+               " for a light straight above, 5 units away, where the cosine is 1: it must divide dot(n, l) by "
+               "|n| |l| (normalise both vectors), or a farther light looks brighter, which undoes the "
+               "inverse-square law.]";
+    if (ch06::lambert(up, vec3<T>(1, -1, 0)) < T(0))
+        return " [lambert() is negative for a light below the surface: clamp the cosine at 0, a light "
+               "cannot take energy away.]";
+    const ch06::shadow_query<T> q = ch06::shadow_ray(vec3<T>(0), up, vec3<T>(0, 4, 0));
+    if (!(q.range.max < infinity<T>))
+        return " [shadow_ray() returns an unbounded range: end it at the light's distance, so blockers beyond "
+               "the light cast no shadow.]";
+    if (!close(length(q.r.direction), T(1)))
+        return " [shadow_ray()'s direction is not a unit vector, so t is not a distance and (0, distance to the "
+               "light) is not the segment up to the light: normalise the direction.]";
+    if (!(q.r.origin.y > T(0)))
+        return " [shadow_ray() starts exactly on the surface: offset its origin along the normal, towards the "
+               "light (shadow acne).]";
+    return "";
+}
+
+// The same for shade() itself, after the building blocks: a light of
+// intensity 4 straight above a diffuse 0.5 surface, at distances 1 and 2.
+template <class T>
+std::string shade_diagnosis() {
+    const std::string blocks = building_block_diagnosis<T>();
+    if (!blocks.empty()) return blocks;
+    const vec3<T> p(0, 0, 0), n(0, 1, 0), eye(0, 1, 1);
+    material m;
+    m.diffuse = color(0.5f);
+    m.specular = color(0.0f);
+    const auto lit = [&](double height) {
+        return ch06::shade(p, n, eye, m, {point_light{{0, height, 0}, color(4.0f)}}, color(0),
+                           ch06::occlusion_test<T>([](const ray<T>&, const interval<T>&) { return false; }))
+            .r;
+    };
+    const float at_1 = lit(1), at_2 = lit(2);
+    if (at_1 == 0.0f && at_2 == 0.0f)
+        return " [shade() gives no light at all from a light straight above: is the vector to the light "
+               "light - point (from the point towards the light)?]";
+    if (close(at_2, 1.0f))
+        return " [shade() gives 1 at distance 2 for 0.5 * 4 / 2^2 = 0.5: it divides by d, not by d^2 "
+               "(inverse-square law).]";
+    if (close(at_2, at_1))
+        return " [shade() gives the same light at distances 1 and 2: divide the intensity by d^2 "
+               "(inverse-square law).]";
+    return "";
+}
+
 }  // namespace
 
 // --- Lambert's cosine law ------------------------------------------------------
@@ -88,7 +149,8 @@ TEST_CASE_TEMPLATE("a light straight above gives full Lambert", T, RT_SCALARS) {
     CHECK_MESSAGE(close(c, T(1)),
                   "a light straight above the surface (along the normal) meets it head-on: cos(0) = 1. "
                   "The light is 5 units away but Lambert only depends on the angle. Got "
-                      << c);
+                      << c
+                      << std::string(close(c, T(5)) ? ": that is dot(n, l) without dividing by |n| |l| (not normalised)" : ""));
 }
 
 TEST_CASE_TEMPLATE("Lambert follows the cosine of the angle", T, RT_SCALARS) {
@@ -105,9 +167,9 @@ TEST_CASE_TEMPLATE("Lambert uses unit vectors", T, RT_SCALARS) {
     const T c = ch06::lambert(vec3<T>(0, 2, 0), vec3<T>(3, 3, 0));
     CHECK_MESSAGE(close(c, std::sqrt(T(0.5))),
                   "cos(theta) = dot(n, l) / (|n| |l|): the vectors here have lengths 2 and sqrt(18), the "
-                  "angle is 45 degrees, so the answer is cos(45 deg) = 0.7071. If you got 6, the vectors "
-                  "were not normalised. Got "
-                      << c);
+                  "angle is 45 degrees, so the answer is cos(45 deg) = 0.7071. Got "
+                      << c
+                      << std::string(close(c, T(6)) ? ": that is dot(n, l) of the vectors as given, not normalised" : ""));
 }
 
 TEST_CASE_TEMPLATE("a light below the surface gives zero not negative", T, RT_SCALARS) {
@@ -132,12 +194,20 @@ TEST_CASE_TEMPLATE("the highlight peaks in the mirror direction", T, RT_SCALARS)
     CHECK_MESSAGE(close(mirror, T(1)),
                   "the viewer sits in the mirror direction of the light (both 45 degrees from the normal, on "
                   "opposite sides): the half vector l + v is the normal itself, so (n . h)^shininess = 1. Got "
-                      << mirror);
+                      << mirror
+                      << std::string(close(ch06::blinn_phong(n, to_light, vec3<T>(-1, 1, 0), T(32)), T(1))
+                              ? ". With a viewer vector as long as the light vector you do get 1: build h from "
+                                "the UNIT vectors, l/|l| + v/|v|, or the longer one pulls h towards itself"
+                              : ""));
     const T off_mirror = ch06::blinn_phong(n, to_light, vec3<T>(-1, 2, 0), T(32));
     CHECK_MESSAGE((off_mirror > T(0) && off_mirror < mirror),
                   "away from the mirror direction the half vector tilts off the normal and the highlight "
                   "fades: expected a value between 0 and "
-                      << mirror << ", got " << off_mirror);
+                      << mirror << ", got " << off_mirror
+                      << std::string(off_mirror >= T(1) ? ". A cosine of 1 (or more, clamped) away from the mirror direction "
+                                               "means h was not normalised: l/|l| + v/|v| is up to 2 long, so "
+                                               "divide n . h by |n| |h|"
+                                             : ""));
     // Viewer next to the light: h = l, 45 degrees from n: cos(45)^32 = 2^-16.
     const T beside_light = ch06::blinn_phong(n, to_light, vec3<T>(1, 1, 0), T(32));
     CHECK_MESSAGE(close(beside_light, std::pow(T(0.5), T(16)), T(0)),  // scale 0: a relative comparison
@@ -163,11 +233,11 @@ TEST_CASE_TEMPLATE("inverse-square falloff", T, RT_SCALARS) {
     CHECK_MESSAGE(close(at_1.r, 2.0f),
                   "a light of intensity 4 at distance 1 straight above a diffuse 0.5 surface delivers "
                   "0.5 * 4 / 1^2 = 2. Got "
-                      << describe_color(at_1));
+                      << describe_color(at_1) << shade_diagnosis<T>());
     CHECK_MESSAGE(close(at_2.r, 0.5f),
                   "twice as far, the same light spreads over four times the area: 0.5 * 4 / 2^2 = 0.5 "
                   "(inverse-square law). Got "
-                      << describe_color(at_2));
+                      << describe_color(at_2) << shade_diagnosis<T>());
 }
 
 TEST_CASE_TEMPLATE("ambient light is always there", T, RT_SCALARS) {
@@ -176,7 +246,7 @@ TEST_CASE_TEMPLATE("ambient light is always there", T, RT_SCALARS) {
     CHECK_MESSAGE((close(c.r, 0.05f) && close(c.g, 0.1f) && close(c.b, 0.2f)),
                   "the only light is below the surface, so only ambient * diffuse = (0.1, 0.2, 0.4) * 0.5 "
                   "remains. Got "
-                      << describe_color(c));
+                      << describe_color(c) << shade_diagnosis<T>());
 }
 
 TEST_CASE_TEMPLATE("a blocker between the point and the light casts a shadow", T, RT_SCALARS) {
@@ -186,7 +256,7 @@ TEST_CASE_TEMPLATE("a blocker between the point and the light casts a shadow", T
     CHECK_MESSAGE(close(c.r, 0.1f),
                   "a sphere sits on the segment from the point to the light, so the shadow ray hits it and "
                   "the light does not count: only ambient * diffuse = 0.2 * 0.5 = 0.1 is left. Got "
-                      << describe_color(c));
+                      << describe_color(c) << shade_diagnosis<T>());
 }
 
 TEST_CASE_TEMPLATE("a blocker beyond the light casts no shadow", T, RT_SCALARS) {
@@ -197,7 +267,7 @@ TEST_CASE_TEMPLATE("a blocker beyond the light casts no shadow", T, RT_SCALARS) 
                   "the sphere is on the shadow ray's line but beyond the light (t from 5 to 7, light at "
                   "t = 4): only blockers with t < the light's distance cast a shadow. Expected "
                   "0.5 * 16 / 4^2 = 0.5, got "
-                      << describe_color(c));
+                      << describe_color(c) << shade_diagnosis<T>());
 }
 
 // --- the shadow ray and shadow acne -----------------------------------------------
@@ -270,7 +340,7 @@ TEST_CASE_TEMPLATE("a tiny scene keeps its shadows", T, RT_SCALARS) {
                   "the tiny ball sits between the floor point and the light, so the point is in shadow. If the "
                   "light got through, the shadow ray started beyond the ball: a fixed offset such as 0.01 is "
                   "larger than this whole scene. Got "
-                      << describe_color(c));
+                      << describe_color(c) << building_block_diagnosis<T>());
 }
 
 TEST_CASE_TEMPLATE("a lit point on a plane does not shadow itself", T, RT_SCALARS) {
@@ -293,4 +363,48 @@ TEST_CASE_TEMPLATE("a lit point on a plane does not shadow itself", T, RT_SCALAR
                                  << acne << " of " << lit
                                  << " lit points re-hit the plane they lie on. Offset the shadow ray's origin "
                                     "along the normal by an amount that grows with the point's coordinates");
+}
+
+TEST_CASE_TEMPLATE("a blocked light takes away only its own light", T, RT_SCALARS) {
+    // Two lights above the point; a sphere blocks the first one only.
+    const sphere<T> blocker{{0, 2, 0}, T(0.5), 0};  // on the way to the light at (0, 4, 0)
+    const std::vector<point_light> lights{light_at({0, 4, 0}, 16), light_at({3, 4, 0}, 25)};
+    const color c = ch06::shade(vec3<T>(0, 0, 0), vec3<T>(0, 1, 0), vec3<T>(0, 1, 1), matte(), lights, color(0.2f),
+                                blocked_by(blocker));
+    // The second light: 25 / 5^2 = 1, cos = 4/5, diffuse 0.5 -> 0.4; plus ambient 0.2 * 0.5 = 0.1.
+    CHECK_MESSAGE(close(c.r, 0.5f),
+                  "the sphere blocks the light at (0,4,0) but not the one at (3,4,0): each light's shadow ray "
+                  "decides for that light alone, so the answer is ambient 0.1 plus 0.5 * 25 / 5^2 * cos = 0.4 "
+                  "from the second light, 0.5. Got "
+                      << describe_color(c)
+                      << (!shade_diagnosis<T>().empty() || !close(c.r, 0.1f)
+                              ? shade_diagnosis<T>()
+                              : std::string(": only ambient, as if one blocked light darkened the point for every "
+                                            "light. Skip only the blocked light (continue), do not return")));
+}
+
+TEST_CASE_TEMPLATE("the shadow offset does not depend on the normal's length", T, RT_SCALARS) {
+    // The same point and light, with normals of lengths 1, 1000 and 0.001.
+    const vec3<T> p(1, 2, 3), to_light(0, 5, 1);
+    const T unit_step = length(ch06::shadow_ray_origin(p, vec3<T>(0, 1, 0), to_light) - p);
+    const T long_step = length(ch06::shadow_ray_origin(p, vec3<T>(0, 1000, 0), to_light) - p);
+    const T short_step = length(ch06::shadow_ray_origin(p, vec3<T>(0, T(1e-3), 0), to_light) - p);
+    REQUIRE_MESSAGE(unit_step > T(0), "the shadow ray's origin must move off the surface; it did not move");
+    CHECK_MESSAGE((long_step < T(2) * unit_step && long_step > T(0.5) * unit_step && short_step < T(2) * unit_step &&
+                   short_step > T(0.5) * unit_step),
+                  "the normal only gives the direction of the offset, and a normal may have any length: move by "
+                  "offset * normal / |normal|. With normals of length 1, 1000 and 0.001 the origin moved by "
+                      << unit_step << ", " << long_step << " and " << short_step);
+}
+
+TEST_CASE_TEMPLATE("shade lights the side of the surface the viewer sees", T, RT_SCALARS) {
+    // The normal points down, but viewer and light are both above the surface.
+    const color c = ch06::shade(vec3<T>(0, 0, 0), vec3<T>(0, -1, 0), vec3<T>(0, 1, 1), matte(),
+                                {light_at({0, 1, 0}, 4)}, color(0), nothing_blocks<T>());
+    CHECK_MESSAGE(close(c.r, 2.0f),
+                  "the given normal points away from the viewer (dot(normal, to_viewer) < 0): flip it first, the "
+                  "surface is shaded on the side the viewer sees. Lit from straight above: 0.5 * 4 / 1^2 = 2. Got "
+                      << describe_color(c)
+                      << (!shade_diagnosis<T>().empty() || c.r != 0.0f ? shade_diagnosis<T>()
+                                                                       : std::string(": the normal was not flipped")));
 }
