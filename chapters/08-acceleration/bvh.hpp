@@ -9,23 +9,30 @@
 //
 // The tree knows nothing about spheres or triangles: it is built from one box
 // per object and, to test an object, calls the scene's own dispatch
-// intersect(i, r, range), chapter 03's object_intersector. Objects are
-// numbered 0 .. N-1 as in chapter 03 (in a scene: spheres, planes, triangles).
+// intersect(i, r, range, hit) (common/object_dispatch.hpp has that form).
+// Objects are numbered 0 .. N-1 as in chapter 03.
 #pragma once
 
 #include "aabb.hpp"
-#include "scene_loop.hpp"  // ch03::object_intersector
 
 #include "common/hit_record.hpp"
 #include "common/interval.hpp"
 #include "common/ray.hpp"
 
+#include <functional>
 #include <optional>
 #include <vector>
 
 namespace rt::ch08 {
 
-using ch03::object_intersector;
+// How the tree asks "does the ray hit object i inside this range?":
+// intersect(i, r, range, hit) returns true when object i is hit with
+// range.min < t < range.max, and then `hit` holds that hit, the first one in
+// the range (the object's smallest t there), with hit.object = i. The t it
+// reports for a hit must not depend on range.max (true of every chapter's
+// shape test). rt::object_dispatch (common/object_dispatch.hpp) is one.
+template <class T>
+using leaf_intersector = std::function<bool(int object, const ray<T>& r, const interval<T>& range, hit_record<T>& hit)>;
 
 // One node of the tree. Children are stored side by side: an interior node's
 // left child is nodes[first] and its right child nodes[first + 1]. A leaf owns
@@ -120,17 +127,14 @@ bvh<T> build_sah(const std::vector<aabb<T>>& boxes, const build_options& options
 //
 // Inputs
 //   tree       a tree built (by any builder above) from boxes of these objects
-//   intersect  intersect(i, r, range) tests object i and returns its first
-//              hit with range.min < t < range.max, or std::nullopt (every
-//              chapter's object test does this; the t it reports for a hit
-//              does not depend on range.max)
+//   intersect  tests one object (see leaf_intersector above)
 //   r, range   the ray and the open interval (range.min, range.max) of t
 //
 // Returns EXACTLY what brute force (chapter 03's loop over all objects,
 // 0, 1, 2, ...) returns: the hit with the smallest t in the open range,
 // and among hits with exactly the same t the one of the LOWEST object index;
-// the record is that object's own, unchanged except for its `object` field,
-// set to the object's index. std::nullopt when nothing is hit. (The tree
+// the record is the one intersect filled in for that object (its `object`
+// field is the object's index). std::nullopt when nothing is hit. (The tree
 // visits objects in another order than 0, 1, 2, ..., so the lowest-index rule
 // must be enforced, not inherited: README, "Ties".)
 //
@@ -146,7 +150,7 @@ bvh<T> build_sah(const std::vector<aabb<T>>& boxes, const build_options& options
 //     t so far (a hit at exactly that t can still win by a lower index).
 //   * An empty tree is a miss, and intersect is never called.
 template <class T>
-std::optional<hit_record<T>> closest_hit(const bvh<T>& tree, const object_intersector<T>& intersect, const ray<T>& r,
+std::optional<hit_record<T>> closest_hit(const bvh<T>& tree, const leaf_intersector<T>& intersect, const ray<T>& r,
                                          const interval<T>& range);
 
 // any_hit — exercise: is any object hit with range.min < t < range.max?
@@ -155,6 +159,6 @@ std::optional<hit_record<T>> closest_hit(const bvh<T>& tree, const object_inters
 // return a hit. Stops at the first object hit it finds (in any order): a
 // shadow ray only asks whether the light is blocked, never by what.
 template <class T>
-bool any_hit(const bvh<T>& tree, const object_intersector<T>& intersect, const ray<T>& r, const interval<T>& range);
+bool any_hit(const bvh<T>& tree, const leaf_intersector<T>& intersect, const ray<T>& r, const interval<T>& range);
 
 }  // namespace rt::ch08

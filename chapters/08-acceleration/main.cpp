@@ -22,8 +22,11 @@ image render_scene(const program_options& opt, long& rays) {
     std::vector<ch08::aabb<T>> boxes;
     for (const auto& s : spheres) boxes.push_back(ch08::bounds(s));
     const ch08::bvh<T> tree = ch08::build_sah(boxes);
-    const ch08::object_intersector<T> intersect = [&](int i, const ray<T>& r, const interval<T>& range) {
-        return ch02::intersect_sphere(spheres[size_t(i)], r, range);
+    const ch08::leaf_intersector<T> intersect = [&](int i, const ray<T>& r, const interval<T>& range,
+                                                    hit_record<T>& hit) {
+        const auto h = ch02::intersect_sphere(spheres[size_t(i)], r, range);
+        if (h) hit = *h;
+        return h.has_value();
     };
     camera_description view;
     view.eye = {0, 0, 0};

@@ -8,7 +8,7 @@
 namespace rt::ch08 {
 
 template <class T>
-std::optional<hit_record<T>> closest_hit(const bvh<T>& tree, const object_intersector<T>& intersect, const ray<T>& r,
+std::optional<hit_record<T>> closest_hit(const bvh<T>& tree, const leaf_intersector<T>& intersect, const ray<T>& r,
                                          const interval<T>& range) {
     // A stack of nodes still to visit, starting with the root if the ray
     // enters its box. Pop a node; skip it if its entry is beyond the best hit
@@ -23,7 +23,7 @@ std::optional<hit_record<T>> closest_hit(const bvh<T>& tree, const object_inters
 }
 
 template <class T>
-bool any_hit(const bvh<T>& tree, const object_intersector<T>& intersect, const ray<T>& r, const interval<T>& range) {
+bool any_hit(const bvh<T>& tree, const leaf_intersector<T>& intersect, const ray<T>& r, const interval<T>& range) {
     // The same walk without order and without shrinking the range: return
     // true at the first object hit.
     (void)tree;
@@ -34,12 +34,12 @@ bool any_hit(const bvh<T>& tree, const object_intersector<T>& intersect, const r
 }
 
 // Compile the exercise for both precisions. Leave these lines as they are.
-template std::optional<hit_record<float>> closest_hit(const bvh<float>&, const object_intersector<float>&,
+template std::optional<hit_record<float>> closest_hit(const bvh<float>&, const leaf_intersector<float>&,
                                                       const ray<float>&, const interval<float>&);
-template std::optional<hit_record<double>> closest_hit(const bvh<double>&, const object_intersector<double>&,
+template std::optional<hit_record<double>> closest_hit(const bvh<double>&, const leaf_intersector<double>&,
                                                        const ray<double>&, const interval<double>&);
-template bool any_hit(const bvh<float>&, const object_intersector<float>&, const ray<float>&, const interval<float>&);
-template bool any_hit(const bvh<double>&, const object_intersector<double>&, const ray<double>&,
+template bool any_hit(const bvh<float>&, const leaf_intersector<float>&, const ray<float>&, const interval<float>&);
+template bool any_hit(const bvh<double>&, const leaf_intersector<double>&, const ray<double>&,
                       const interval<double>&);
 
 }  // namespace rt::ch08

@@ -23,7 +23,7 @@ constexpr size_t typical_depth = 64;
 // Asks the objects of one leaf, keeping the nearest hit and, among hits at
 // exactly the same t, the lowest object index (brute force's answer).
 template <class T>
-void visit_leaf(const bvh<T>& tree, const bvh_node<T>& leaf, const object_intersector<T>& intersect, const ray<T>& r,
+void visit_leaf(const bvh<T>& tree, const bvh_node<T>& leaf, const leaf_intersector<T>& intersect, const ray<T>& r,
                 const interval<T>& range, std::optional<hit_record<T>>& best) {
     for (int k = leaf.first; k < leaf.first + leaf.count; ++k) {
         const int object = tree.order[size_t(k)];
@@ -31,10 +31,10 @@ void visit_leaf(const bvh<T>& tree, const bvh_node<T>& leaf, const object_inters
         // it is the open bound. Without it an object of lower index hit at
         // the same t would be missed whenever it is visited second.
         const T upper = best ? std::nextafter(best->t, infinity<T>) : range.max;
-        auto hit = intersect(object, r, interval<T>{range.min, upper});
-        if (!hit) continue;
-        if (!best || hit->t < best->t || object < best->object) {
-            hit->object = object;
+        hit_record<T> hit;
+        if (!intersect(object, r, interval<T>{range.min, upper}, hit)) continue;
+        if (!best || hit.t < best->t || object < best->object) {
+            hit.object = object;
             best = hit;
         }
     }
@@ -43,7 +43,7 @@ void visit_leaf(const bvh<T>& tree, const bvh_node<T>& leaf, const object_inters
 }  // namespace
 
 template <class T>
-std::optional<hit_record<T>> closest_hit(const bvh<T>& tree, const object_intersector<T>& intersect, const ray<T>& r,
+std::optional<hit_record<T>> closest_hit(const bvh<T>& tree, const leaf_intersector<T>& intersect, const ray<T>& r,
                                          const interval<T>& range) {
     std::optional<hit_record<T>> best;
     if (tree.nodes.empty()) return best;
@@ -88,7 +88,7 @@ std::optional<hit_record<T>> closest_hit(const bvh<T>& tree, const object_inters
 }
 
 template <class T>
-bool any_hit(const bvh<T>& tree, const object_intersector<T>& intersect, const ray<T>& r, const interval<T>& range) {
+bool any_hit(const bvh<T>& tree, const leaf_intersector<T>& intersect, const ray<T>& r, const interval<T>& range) {
     if (tree.nodes.empty()) return false;
     const vec3<T> inv = reciprocal(r.direction);
     // No ordering and no shrinking: the first hit anywhere answers the question.
@@ -104,18 +104,19 @@ bool any_hit(const bvh<T>& tree, const object_intersector<T>& intersect, const r
             stack.push_back(n.first + 1);
             continue;
         }
+        hit_record<T> hit;
         for (int k = n.first; k < n.first + n.count; ++k)
-            if (intersect(tree.order[size_t(k)], r, range)) return true;
+            if (intersect(tree.order[size_t(k)], r, range, hit)) return true;
     }
     return false;
 }
 
-template std::optional<hit_record<float>> closest_hit(const bvh<float>&, const object_intersector<float>&,
+template std::optional<hit_record<float>> closest_hit(const bvh<float>&, const leaf_intersector<float>&,
                                                       const ray<float>&, const interval<float>&);
-template std::optional<hit_record<double>> closest_hit(const bvh<double>&, const object_intersector<double>&,
+template std::optional<hit_record<double>> closest_hit(const bvh<double>&, const leaf_intersector<double>&,
                                                        const ray<double>&, const interval<double>&);
-template bool any_hit(const bvh<float>&, const object_intersector<float>&, const ray<float>&, const interval<float>&);
-template bool any_hit(const bvh<double>&, const object_intersector<double>&, const ray<double>&,
+template bool any_hit(const bvh<float>&, const leaf_intersector<float>&, const ray<float>&, const interval<float>&);
+template bool any_hit(const bvh<double>&, const leaf_intersector<double>&, const ray<double>&,
                       const interval<double>&);
 
 }  // namespace rt::ch08

@@ -39,13 +39,23 @@ struct objects {
         return b;
     }
 
-    // The scene's dispatch, counting how often it is called.
-    object_intersector<T> intersector(long* calls = nullptr) const {
-        return [this, calls](int i, const ray<T>& r, const interval<T>& range) {
+    // Object i's own test: its first hit in the range, or std::nullopt.
+    std::optional<hit_record<T>> test(int i, const ray<T>& r, const interval<T>& range) const {
+        const size_t k = size_t(i);
+        if (k < spheres.size()) return ch02::intersect_sphere(spheres[k], r, range);
+        return ch05::intersect_triangle(triangles[k - spheres.size()], r, range);
+    }
+
+    // The same in the form the tree asks it (leaf_intersector), counting how
+    // often it is called.
+    leaf_intersector<T> intersector(long* calls = nullptr) const {
+        return [this, calls](int i, const ray<T>& r, const interval<T>& range, hit_record<T>& hit) {
             if (calls) ++*calls;
-            const size_t k = size_t(i);
-            if (k < spheres.size()) return ch02::intersect_sphere(spheres[k], r, range);
-            return ch05::intersect_triangle(triangles[k - spheres.size()], r, range);
+            const auto h = test(i, r, range);
+            if (!h) return false;
+            hit = *h;
+            hit.object = i;
+            return true;
         };
     }
 };
@@ -54,10 +64,9 @@ struct objects {
 // replace the first one found.
 template <class T>
 std::optional<hit_record<T>> brute_force(const objects<T>& scene, const ray<T>& r, interval<T> range) {
-    const object_intersector<T> intersect = scene.intersector();
     std::optional<hit_record<T>> best;
     for (int i = 0; i < scene.count(); ++i)
-        if (auto hit = intersect(i, r, range)) {
+        if (auto hit = scene.test(i, r, range)) {
             hit->object = i;
             range.max = hit->t;
             best = hit;
