@@ -38,3 +38,7 @@ if(TARGET glm::glm)
 else()
   set(RT_GLM_TARGET glm)
 endif()
+
+# OBJ meshes (common/obj_mesh.hpp), read in double precision.
+find_package(tinyobjloader CONFIG QUIET)
+rt_require_package(tinyobjloader_FOUND "tinyobjloader (Wavefront OBJ meshes)" libtinyobjloader-dev)

@@ -9,6 +9,9 @@
 // with its field's path, and reported at that field's line and column.
 #include "scene_file.hpp"
 
+#include "obj_mesh.hpp"
+#include "spd.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -233,7 +236,7 @@ public:
         d.source = source_;
         if (!doc_.is_object()) fail("", "expected the scene to be a JSON object { ... }, got " + describe(doc_, ""));
         check_keys(doc_, "", {"description", "camera", "background", "ambient", "materials", "spheres", "planes",
-                              "triangles", "meshes", "lights"});
+                              "triangles", "meshes", "lights", "generate"});
         if (auto* j = member(doc_, "", "description"); j && !j->is_string())
             fail("description", "expected a string, got " + describe(*j, "description"));
         d.camera = read_camera(required(doc_, "", "camera", "an object describing the camera"), "camera");
@@ -244,6 +247,7 @@ public:
         read_list(d, "planes", [&](const json& j, const std::string& p) { read_plane(d, j, p); });
         read_list(d, "triangles", [&](const json& j, const std::string& p) { read_triangle(d, j, p); });
         read_list(d, "meshes", [&](const json& j, const std::string& p) { read_mesh(d, j, p); });
+        if (auto* g = member(doc_, "", "generate")) read_generate(d, *g);
         read_list(d, "lights", [&](const json& j, const std::string& p) {
             check_keys(j, p, {"position", "intensity"});
             point_light light;
@@ -551,8 +555,28 @@ private:
         d.world.triangles.push_back(t);
     }
 
+    // "generate": {"name": "balls", "size": 4}: one of the Standard
+    // Procedural Databases (common/spd.hpp), its materials 0, 1 being the
+    // scene's first materials.
+    void read_generate(scene_description& d, const json& j) const {
+        check_keys(j, "generate", {"name", "size"});
+        const json& n = required(j, "generate", "name", "\"balls\", \"tetra\" or \"mount\"");
+        spd_database db;
+        if (!n.is_string() || !spd_from_name(n.get<std::string>(), db))
+            fail("generate.name", "expected \"balls\", \"tetra\" or \"mount\", got " + describe(n, "generate.name"));
+        int max = spd_max_size(db), materials = spd_material_count(db);
+        int size = int(read_integer(required(j, "generate", "size", "a size"), "generate.size", 1, max,
+                                    "a size from 1 to " + std::to_string(max) + " for " + spd_name(db)));
+        if (int(d.world.materials.size()) < materials)
+            fail("generate", std::string(spd_name(db)) + " needs " + std::to_string(materials) + " materials in \"materials\"");
+        std::vector<int> ids;
+        for (int m = 0; m < materials; ++m) ids.push_back(m);
+        spd_generate(db, size, d.world, ids);
+    }
+
     void read_mesh(scene_description& d, const json& j, const std::string& p) const {
-        check_keys(j, p, {"vertices", "faces", "material"});
+        check_keys(j, p, {"vertices", "faces", "material", "obj"});
+        if (auto* obj = member(j, p, "obj")) return read_obj(d, j, *obj, p);
         const json& vs = required(j, p, "vertices", "an array of points [[x, y, z], ...]");
         if (!vs.is_array() || vs.empty())
             fail(p + ".vertices", "expected a non-empty array of points [[x, y, z], ...], got " +
@@ -580,6 +604,24 @@ private:
             d.world.triangles.push_back(t);
             if (size_t(d.world.object_count()) > max_objects) fail(fp, "more than 10 million objects in the scene");
         }
+        ++d.mesh_count;
+    }
+
+    // {"obj": "bunny.obj"}: a path relative to the scene file's folder.
+    void read_obj(scene_description& d, const json& j, const json& obj, const std::string& p) const {
+        if (!obj.is_string()) fail(p + ".obj", "expected the path of an OBJ file, got " + describe(obj, p + ".obj"));
+        if (member(j, p, "vertices") || member(j, p, "faces"))
+            fail(p + ".obj", "a mesh is either an OBJ file or vertices and faces, not both");
+        std::filesystem::path file = std::filesystem::path(source_).parent_path() / obj.get<std::string>();
+        int material = read_material_ref(d, j, p);
+        try {
+            obj_mesh mesh = load_obj_mesh(file.string(), max_coordinate);
+            for (auto& t : mesh.triangles) t.material = material;
+            d.world.triangles.insert(d.world.triangles.end(), mesh.triangles.begin(), mesh.triangles.end());
+        } catch (const obj_error& e) {
+            fail(p + ".obj", e.what());
+        }
+        if (size_t(d.world.object_count()) > max_objects) fail(p + ".obj", "more than 10 million objects in the scene");
         ++d.mesh_count;
     }
 };

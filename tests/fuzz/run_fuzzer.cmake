@@ -5,10 +5,12 @@
 # in WORK_DIR (crash-*, timeout-*, oom-*) and fails the test.
 #   -DCLANGXX=clang++ -DSOURCE_DIR=<repo> -DWORK_DIR=<build dir> -DSECONDS=20
 set(fuzzer "${WORK_DIR}/scene_fuzzer")
-set(sources "${SOURCE_DIR}/tests/fuzz/scene_fuzz.cpp" "${SOURCE_DIR}/common/scene_file.cpp")
+set(sources "${SOURCE_DIR}/tests/fuzz/scene_fuzz.cpp" "${SOURCE_DIR}/common/scene_file.cpp"
+            "${SOURCE_DIR}/common/spd.cpp" "${SOURCE_DIR}/common/obj_mesh.cpp")
 set(rebuild FALSE)
 foreach(f IN LISTS sources ITEMS "${SOURCE_DIR}/common/scene_file.hpp" "${SOURCE_DIR}/common/scene.hpp"
-                                 "${SOURCE_DIR}/common/camera.hpp" "${SOURCE_DIR}/common/shapes.hpp")
+                                 "${SOURCE_DIR}/common/camera.hpp" "${SOURCE_DIR}/common/shapes.hpp"
+                                 "${SOURCE_DIR}/common/spd.hpp" "${SOURCE_DIR}/common/obj_mesh.hpp")
   if(NOT EXISTS "${fuzzer}" OR "${f}" IS_NEWER_THAN "${fuzzer}")
     set(rebuild TRUE)
   endif()
@@ -16,7 +18,8 @@ endforeach()
 if(rebuild)
   message("building ${fuzzer} with ${CLANGXX}")
   execute_process(COMMAND "${CLANGXX}" -std=c++17 -g -O1 -fsanitize=fuzzer,address,undefined
-                          -fno-sanitize-recover=undefined -I "${SOURCE_DIR}" ${sources} -o "${fuzzer}"
+                          -fno-sanitize-recover=undefined -DTINYOBJLOADER_USE_DOUBLE -I "${SOURCE_DIR}" ${sources}
+                          -ltinyobjloader_double -o "${fuzzer}"
                   RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE out)
   if(NOT status EQUAL 0)
     if(out MATCHES "clang_rt\\.fuzzer|fsanitize=fuzzer")

@@ -1,0 +1,264 @@
+// spd.cpp — the three Standard Procedural Databases (see spd.hpp).
+#include "spd.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+namespace rt {
+
+const char* spd_name(spd_database db) {
+    switch (db) {
+        case spd_database::balls: return "balls";
+        case spd_database::tetra: return "tetra";
+        case spd_database::mount: return "mount";
+    }
+    return "?";
+}
+
+bool spd_from_name(const std::string& name, spd_database& db) {
+    for (auto d : {spd_database::balls, spd_database::tetra, spd_database::mount})
+        if (name == spd_name(d)) {
+            db = d;
+            return true;
+        }
+    return false;
+}
+
+int spd_max_size(spd_database db) {
+    switch (db) {
+        case spd_database::balls: return 8;   // 48 million spheres
+        case spd_database::tetra: return 11;  // 4 million triangles
+        case spd_database::mount: return 10;  // 2 million triangles
+    }
+    return 0;
+}
+
+int spd_material_count(spd_database db) { return db == spd_database::tetra ? 1 : 2; }
+
+spd_counts spd_expected_counts(spd_database db, int size) {
+    spd_counts c;
+    std::uint64_t power = 1;  // 4^size or 9^size, built up below
+    switch (db) {
+        case spd_database::balls:
+            // 1 + 9 + ... + 9^size, summed term by term (no rounding).
+            for (int level = 0; level <= size; ++level, power *= 9) c.spheres += power;
+            c.planes = 1;
+            break;
+        case spd_database::tetra:
+            for (int i = 0; i < size; ++i) power *= 4;
+            c.triangles = power;
+            break;
+        case spd_database::mount:
+            for (int i = 0; i < size; ++i) power *= 4;
+            c.triangles = 2 * power;
+            c.spheres = 4;
+            break;
+    }
+    return c;
+}
+
+namespace {
+
+// Counts what passes through, for the return value of spd_generate.
+class counting_sink : public spd_sink {
+public:
+    explicit counting_sink(spd_sink& out) : out_(out) {}
+    void sphere(const vec3d& c, double r, int m) override { ++counts.spheres, out_.sphere(c, r, m); }
+    void triangle(const vec3d& a, const vec3d& b, const vec3d& c, int m) override {
+        ++counts.triangles, out_.triangle(a, b, c, m);
+    }
+    void plane(const vec3d& p, const vec3d& n, int m) override { ++counts.planes, out_.plane(p, n, m); }
+    spd_counts counts;
+
+private:
+    spd_sink& out_;
+};
+
+// ---- balls -------------------------------------------------------------
+
+// Two unit vectors across w, so (u, v, w) is a right-handed frame. Any
+// choice works; this one avoids the cross product of nearly parallel vectors.
+void frame_around(const vec3d& w, vec3d& u, vec3d& v) {
+    vec3d helper = std::fabs(w.x) > 0.9 ? vec3d(0, 1, 0) : vec3d(1, 0, 0);
+    u = normalize(cross(helper, w));
+    v = cross(w, u);
+}
+
+// The nine directions of a sphere's children in its own frame (w: away
+// from its parent): six around the equator, 60 degrees apart, and three
+// above, between them, at the elevation asin(sqrt(2/3)) = 54.7 degrees.
+// Children a third of the parent's radius at these directions touch the
+// parent and do not touch each other (the closest pair is 56 degrees
+// apart, where 29 would be enough).
+std::vector<vec3d> child_directions() {
+    const double pi = std::acos(-1.0);
+    std::vector<vec3d> dirs;
+    for (int k = 0; k < 6; ++k) dirs.emplace_back(std::cos(k * pi / 3), std::sin(k * pi / 3), 0.0);
+    double elevation = std::asin(std::sqrt(2.0 / 3.0));
+    for (int k = 0; k < 3; ++k) {
+        double azimuth = pi / 6 + k * 2 * pi / 3;
+        dirs.emplace_back(std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth),
+                          std::sin(elevation));
+    }
+    return dirs;
+}
+
+// A sphere and, `levels` deep, its children. The recursion is only `size`
+// deep (at most 9 calls on the stack); the work is in the leaves.
+void flake(const vec3d& center, double radius, const vec3d& up, int levels, const std::vector<vec3d>& dirs,
+           spd_sink& out) {
+    out.sphere(center, radius, 1);
+    if (levels == 0) return;
+    vec3d u, v;
+    frame_around(up, u, v);
+    double child_radius = radius / 3;
+    for (const vec3d& d : dirs) {
+        vec3d dir = d.x * u + d.y * v + d.z * up;
+        flake(center + (radius + child_radius) * dir, child_radius, dir, levels - 1, dirs, out);
+    }
+}
+
+void generate_balls(int size, spd_sink& out) {
+    // A root sphere of radius 0.5 at the origin resting on the ground z = -0.5.
+    out.plane(vec3d(0, 0, -0.5), vec3d(0, 0, 1), 0);
+    flake(vec3d(0, 0, 0), 0.5, vec3d(0, 0, 1), size, child_directions(), out);
+}
+
+// ---- tetra -------------------------------------------------------------
+
+// The four faces of the tetrahedron (p0..p3), each wound counter-clockwise
+// seen from outside (its normal points away from the opposite corner).
+void tetra_faces(const vec3d p[4], spd_sink& out) {
+    for (int skip = 0; skip < 4; ++skip) {
+        vec3d f[3];
+        for (int i = 0, n = 0; i < 4; ++i)
+            if (i != skip) f[n++] = p[i];
+        if (dot(cross(f[1] - f[0], f[2] - f[0]), f[0] - p[skip]) < 0) std::swap(f[1], f[2]);
+        out.triangle(f[0], f[1], f[2], 0);
+    }
+}
+
+// Replaces a tetrahedron by its four corner tetrahedra of half the size
+// (corner i and the midpoints of its three edges); at the last level the
+// tetrahedron itself is drawn.
+void sierpinski(const vec3d p[4], int levels, spd_sink& out) {
+    if (levels == 0) return tetra_faces(p, out);
+    for (int corner = 0; corner < 4; ++corner) {
+        vec3d q[4];
+        for (int i = 0; i < 4; ++i) q[i] = (p[corner] + p[i]) * 0.5;
+        sierpinski(q, levels - 1, out);
+    }
+}
+
+void generate_tetra(int size, spd_sink& out) {
+    // A regular tetrahedron (alternate corners of a cube), edge 2*sqrt(2),
+    // centred on the origin.
+    const vec3d p[4] = {{1, 1, 1}, {-1, -1, 1}, {-1, 1, -1}, {1, -1, -1}};
+    sierpinski(p, size - 1, out);
+}
+
+// ---- mount -------------------------------------------------------------
+
+// A repeatable pseudo-random number in [-1, 1) for grid point (i, j): the
+// same point gets the same displacement however the grid is traversed
+// (a hash, not a sequence: SplitMix64's finaliser).
+double hash_unit(std::uint64_t i, std::uint64_t j) {
+    std::uint64_t z = (i << 32 | j) + 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    z ^= z >> 31;
+    return double(z >> 11) * 0x1.0p-52 - 1.0;
+}
+
+// Heights on an (n+1) x (n+1) grid, n = 2^size, by midpoint displacement:
+// each halving of the step sets the midpoints of the cells' edges and
+// centres to the mean of their ends plus a random offset whose amplitude
+// shrinks by 2^-H per halving (H = 3 - D for fractal dimension D = 2.2:
+// rough, like a mountain).
+std::vector<double> mountain_heights(int size) {
+    const int n = 1 << size;
+    const double H = 0.8;
+    std::vector<double> h(size_t(n + 1) * size_t(n + 1), 0.0);
+    auto at = [&](int i, int j) -> double& { return h[size_t(i) * size_t(n + 1) + size_t(j)]; };
+    double amplitude = 0.6;
+    for (int step = n; step > 1; step /= 2, amplitude *= std::pow(2.0, -H)) {
+        int half = step / 2;
+        auto offset = [&](int i, int j) { return amplitude * hash_unit(std::uint64_t(i), std::uint64_t(j)); };
+        for (int i = 0; i < n; i += step)
+            for (int j = 0; j < n; j += step) {
+                // The first centre is lifted: one peak, not a rough plain.
+                double lift = step == n ? 1.0 : 0.0;
+                at(i + half, j + half) = (at(i, j) + at(i + step, j) + at(i, j + step) + at(i + step, j + step)) / 4 +
+                                         offset(i + half, j + half) + lift;
+                at(i + half, j) = (at(i, j) + at(i + step, j)) / 2 + offset(i + half, j);
+                at(i, j + half) = (at(i, j) + at(i, j + step)) / 2 + offset(i, j + half);
+                if (i + step == n) at(n, j + half) = (at(n, j) + at(n, j + step)) / 2 + offset(n, j + half);
+                if (j + step == n) at(i + half, n) = (at(i, n) + at(i + step, n)) / 2 + offset(i + half, n);
+            }
+    }
+    return h;
+}
+
+void generate_mount(int size, spd_sink& out) {
+    const int n = 1 << size;
+    std::vector<double> h = mountain_heights(size);
+    // The grid spans [-1, 1] x [-1, 1]; heights are lifted so the corners,
+    // which stay at 0, are the foot of the mountain.
+    auto point = [&](int i, int j) {
+        return vec3d(-1 + 2.0 * i / n, -1 + 2.0 * j / n, std::max(0.0, h[size_t(i) * size_t(n + 1) + size_t(j)]));
+    };
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            vec3d a = point(i, j), b = point(i + 1, j), c = point(i + 1, j + 1), d = point(i, j + 1);
+            out.triangle(a, b, c, 0);  // counter-clockwise seen from above
+            out.triangle(a, c, d, 0);
+        }
+    // Four spheres floating in front of the mountain (the SPD's glass balls).
+    const double spheres[4][4] = {
+        {-0.8, -1.25, 0.35, 0.15}, {-0.3, -1.3, 0.45, 0.2}, {0.25, -1.25, 0.4, 0.17}, {0.75, -1.3, 0.3, 0.14}};
+    for (const auto& s : spheres) out.sphere(vec3d(s[0], s[1], s[2]), s[3], 1);
+}
+
+// Appends to a scene<double>.
+class scene_sink : public spd_sink {
+public:
+    scene_sink(scene<double>& s, const std::vector<int>& materials) : s_(s), m_(materials) {}
+    void sphere(const vec3d& c, double r, int m) override { s_.spheres.push_back({c, r, m_.at(size_t(m))}); }
+    void triangle(const vec3d& a, const vec3d& b, const vec3d& c, int m) override {
+        s_.triangles.push_back({a, b, c, m_.at(size_t(m))});
+    }
+    void plane(const vec3d& p, const vec3d& n, int m) override { s_.planes.push_back({p, n, m_.at(size_t(m))}); }
+
+private:
+    scene<double>& s_;
+    const std::vector<int>& m_;
+};
+
+}  // namespace
+
+spd_counts spd_generate(spd_database db, int size, scene<double>& into, const std::vector<int>& materials) {
+    if (size >= 1 && size <= spd_max_size(db)) {  // else the call below throws
+        spd_counts expected = spd_expected_counts(db, size);
+        into.spheres.reserve(into.spheres.size() + expected.spheres);
+        into.triangles.reserve(into.triangles.size() + expected.triangles);
+    }
+    scene_sink sink(into, materials);
+    return spd_generate(db, size, sink);
+}
+
+spd_counts spd_generate(spd_database db, int size, spd_sink& out) {
+    if (size < 1 || size > spd_max_size(db))
+        throw std::invalid_argument(std::string("spd: ") + spd_name(db) + " takes a size from 1 to " +
+                                    std::to_string(spd_max_size(db)) + ", got " + std::to_string(size));
+    counting_sink counted(out);
+    switch (db) {
+        case spd_database::balls: generate_balls(size, counted); break;
+        case spd_database::tetra: generate_tetra(size, counted); break;
+        case spd_database::mount: generate_mount(size, counted); break;
+    }
+    return counted.counts;
+}
+
+}  // namespace rt
