@@ -495,3 +495,28 @@ TEST_CASE_TEMPLATE("random answers are never NaN or infinite", T, RT_SCALARS) {
     }
     CHECK_MESSAGE(ok, "a hit always has a finite t inside the range and a finite point and normal");
 }
+
+// Catches: c (and half_b) expanded as  o.o - 2 o.C + C.C - R^2  instead of
+// computed from oc = o - C first. Every other sphere case puts the ray's
+// origin at the world origin, where o = 0 makes the expanded form the same
+// numbers as the careful one. Here the sphere sits far from the world origin,
+// off every axis, and the ray starts close to it: the expanded squares are
+// about |C|^2 (3e11 in float, 3e25 in double) while c itself is 11121, so
+// their rounding drowns c. With oc first every number is an exact integer.
+TEST_CASE_TEMPLATE("hidden: a sphere far from the world origin, seen from close by, off the axes", T, RT_SCALARS) {
+    const T far = sizeof(T) == sizeof(float) ? T(3e5) : T(3e12);
+    const vec3<T> centre(far, T(-0.75) * far, T(0.5) * far);
+    const sphere<T> s{centre, T(500)};
+    // The origin is 511 = 7 * 73 from the centre along (2, 3, 6) / 7: oc = (146, 219, 438).
+    const vec3<T> oc(146, 219, 438);
+    bool ok = true;
+    for (const vec3<T>& d : {vec3<T>(-2, -3, -6), vec3<T>(-1, -3, -5), vec3<T>(T(-0.5), -4, -6)}) {
+        const ray<T> r{centre + oc, d};
+        const reference_hit ref = reference(s, r, 0.0L, (long double)infinity<T>);
+        const auto hit = intersect_sphere(s, r, ahead<T>());
+        ok = ok && ref.hit && hit.has_value() &&
+             std::fabs((long double)hit->t - ref.t) <= (sizeof(T) == sizeof(float) ? 1e-4L : 1e-10L) * ref.t;
+    }
+    CHECK_MESSAGE(ok, "a sphere far from the world origin is hit accurately from close by: compute oc = o - C "
+                      "first, so the quadratic works with small numbers");
+}
