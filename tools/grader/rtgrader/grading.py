@@ -10,13 +10,13 @@ import secrets
 import select
 import shutil
 import stat
-import subprocess
 import tempfile
+import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
-from . import manifest, sandbox, tree
+from . import fsutil, isolation, manifest, sandbox, tree
 from .sandbox import MiB, Limits
 
 MAX_SOURCE_BYTES = 1 * MiB
@@ -37,6 +37,9 @@ class Options:
     limits: Limits = field(default_factory=Limits)
     render_seconds: float = 60.0
     jobs: int = 2
+    chapter_seconds: float = 240.0    # time budget of a chapter's tests (then the rest are skipped)
+    submission_seconds: float = 900.0  # time budget of all the tests of a submission
+    max_timeouts: int = 3             # a chapter's remaining tests are skipped after this many timeouts
 
 
 @dataclass
@@ -56,7 +59,7 @@ def escape_filter(case):
 
 
 def find_exercise(submission, ch, ex):
-    """The submission's copy of exercise file ex, or (None, why)."""
+    """The contents of the submission's copy of exercise file ex, or (None, why)."""
     root = os.path.realpath(submission)
     candidates = [os.path.join(submission, "chapters", ch["folder"], ex),
                   os.path.join(submission, ch["folder"], ex),
@@ -72,11 +75,14 @@ def find_exercise(submission, ch, ex):
             continue
         if not os.path.realpath(path).startswith(root + os.sep) or stat.S_ISLNK(info.st_mode):
             return None, f"{ex} is a link, not a file: submit the file itself"
-        if not stat.S_ISREG(info.st_mode):
-            return None, f"{ex} is not a regular file"
-        if info.st_size > MAX_SOURCE_BYTES:
-            return None, f"{ex} is larger than {MAX_SOURCE_BYTES // MiB} MiB"
-        return path, ""
+        # Read once, here, with no link of either kind followed (fsutil); the
+        # grader compiles and scans these bytes, never the student's file again.
+        try:
+            return fsutil.read_student_file(submission, os.path.relpath(path, submission), MAX_SOURCE_BYTES), ""
+        except fsutil.Refused as e:
+            return None, str(e)
+        except OSError as e:
+            return None, f"{ex} cannot be read: {e.strerror}"
     return None, (f"the file {ex} of chapter {ch['number']} ({ch['title']}) is missing from the submission "
                   f"(expected at chapters/{ch['folder']}/{ex}, or {ex} at the top of the submission)")
 
@@ -104,11 +110,13 @@ class Grader:
         chapters = self.tree.chapters()
         self.chapter_ids = options.chapters or [cid for cid, ch in chapters.items() if ch.get("built")]
         self.names = manifest.test_names(chapters, self.chapter_ids, options.public_only)
+        self._per = threading.local()   # this grading's folder and deadline (a batch grades in threads)
 
     # --- one submission ---------------------------------------------------------------
     def grade(self, submission, out_dir):
         start = time.monotonic()
-        os.makedirs(out_dir, exist_ok=True)
+        out_dir = fsutil.own_folder(out_dir)
+        fsutil.fresh_folder(out_dir, "renders", 0o700 if sandbox.is_root() else 0o755)
         work = tempfile.mkdtemp(prefix="rt-grade-")
         os.chmod(work, 0o711)
         # A worker slot no other grading on this machine holds (in this
@@ -127,6 +135,11 @@ class Grader:
         logs = os.path.join(work, "logs")
         make_dir(logs, None, 0o700)
         notes = []
+        self.iso = isolation.detect()
+        self.log("grader: " + self.iso.describe())
+        notes += self.iso.notes
+        self._per.work = work
+        self._per.deadline = time.monotonic() + self.options.submission_seconds
         if user is None:
             notes.append("isolation by user is off (the grader is not running as root): the submission's code "
                          "runs as the grader's own user")
@@ -194,8 +207,8 @@ class Grader:
                                                 f"(see '{cid} compilation')"))
                 continue
             results += self._run_chapter(chapters[cid], os.path.join(work, cid), logs, out_dir, user)
-        if suspicious:
-            notes.append("words to look at in the submission: " + "; ".join(suspicious))
+        if suspicious:   # for the instructor's eyes only: never in results.json, which the student sees
+            self.log("grader: instructor note: words to look at in the submission: " + "; ".join(suspicious))
         return results, notes
 
     def _names_of(self, cid):
@@ -204,9 +217,8 @@ class Grader:
     def _scan(self, sources):
         found = []
         for cid, files in sources.items():
-            for ex, path in files.items():
-                with open(path, "rb") as f:
-                    text = f.read().decode("utf-8", errors="replace")
+            for ex, data in files.items():
+                text = data.decode("utf-8", errors="replace")
                 words = [w for w in SUSPICIOUS if w in text]
                 if words:
                     found.append(f"{cid}/{ex}: {', '.join(words)}")
@@ -217,11 +229,12 @@ class Grader:
         """Compiles the chapter's exercise files as the sandbox user; returns ({ex: object}, error)."""
         folder = os.path.join(work, ch["id"])
         make_dir(folder, user, 0o700)
+        kept = os.path.join(work, "objects", ch["id"])    # the grader's own copies of the objects
+        os.makedirs(kept, mode=0o700, exist_ok=True)
         objects = {}
-        for ex, path in files.items():
+        for ex, data in files.items():
             src = os.path.join(folder, ex)
-            with open(path, "rb") as f_in, open(src, "wb") as f_out:
-                f_out.write(f_in.read(MAX_SOURCE_BYTES))
+            fsutil.write_new(folder, ex, data)
             if user is not None:
                 os.chown(src, *user)
             obj = os.path.join(folder, ex + ".o")
@@ -230,18 +243,20 @@ class Grader:
             args = [src if os.path.normpath(a) == original else a for a in args]
             args[args.index("-o") + 1] = obj
             limits = Limits(wall_seconds=60, cpu_seconds=60, memory_bytes=4096 * MiB,
-                            file_bytes=256 * MiB, processes=64)
-            outcome = sandbox.run_limited(args, folder, limits, os.path.join(logs, f"{ch['id']}-{ex}.compile"),
-                                          user=user, output_cap=64 * 1024)
+                            file_bytes=256 * MiB, processes=64, open_files=256, tmp_bytes=512 * MiB)
+            outcome = sandbox.run(args, limits=limits, log_path=os.path.join(logs, f"{ch['id']}-{ex}.compile"),
+                                  user=user, inputs=sandbox.include_inputs(args, self.tree.source),
+                                  scratch=folder, private_root=work, output_cap=64 * 1024)
             if outcome.returncode != 0 or outcome.timed_out:
                 how = sandbox.describe_ending(outcome, limits)
                 message = self._tidy(outcome.output, ch, work)
                 return None, f"compiling {ex} failed" + (f": the compiler {how}" if how else "") + ":\n" + message
-            # The object is copied by root into the build tree: refuse anything odd.
-            info = os.lstat(obj)
-            if not stat.S_ISREG(info.st_mode):
+            # The object is copied by root into the build tree: never through a link.
+            try:
+                fsutil.write_new(kept, ex + ".o", fsutil.read_regular(obj, limits.file_bytes), 0o600)
+            except (OSError, fsutil.Refused):
                 return None, f"compiling {ex} did not produce an object file"
-            objects[ex] = obj
+            objects[ex] = os.path.join(kept, ex + ".o")
         return objects, ""
 
     def _tidy(self, text, ch, work):
@@ -266,6 +281,8 @@ class Grader:
     # --- running ------------------------------------------------------------------------
     def _run_chapter(self, ch, folder, logs, out_dir, user):
         results = []
+        chapter_end = time.monotonic() + self.options.chapter_seconds
+        timeouts = 0
         for kind in ("public", "hidden"):
             cases = [n for n in self._names_of(ch["id"]) if n[1] == kind]
             if not cases:
@@ -273,21 +290,35 @@ class Grader:
             exe = os.path.join(os.path.dirname(folder), "bin", ch["id"], f"{kind}_tests")
             probe = self._probe(exe, folder, logs, user)
             for name, _, cid, case in cases:
-                if probe:
-                    results.append(self._result(name, kind, cid, False, probe))
+                skip = self._over_budget(chapter_end, timeouts)
+                if probe or skip:
+                    results.append(self._result(name, kind, cid, False, probe or skip))
                     continue
-                passed, output = self._run_case(exe, case, kind, folder, logs, user)
+                passed, output, timed_out = self._run_case(exe, case, kind, folder, logs, user)
+                timeouts += timed_out
                 results.append(self._result(name, kind, cid, passed, output))
         if ch.get("reference") and any(n[1] == "render" for n in self._names_of(ch["id"])):
             passed, output = self._render(ch, folder, logs, out_dir, user)
             results.append(self._result(f"{ch['id']}.render", "render", ch["id"], passed, output))
         return results
 
+    def _over_budget(self, chapter_end, timeouts):
+        """'' while a chapter may run more tests, else why its remaining tests are skipped."""
+        now = time.monotonic()
+        if timeouts >= self.options.max_timeouts:
+            return (f"not run: {timeouts} tests of this chapter did not finish in time, so its remaining tests "
+                    "were skipped (does your code hang, or wait at exit?)")
+        if now > chapter_end:
+            return f"not run: this chapter's tests used their time budget ({self.options.chapter_seconds:g} s)"
+        if now > self._per.deadline:
+            return f"not run: the submission's tests used their time budget ({self.options.submission_seconds:g} s)"
+        return ""
+
     def _probe(self, exe, folder, logs, user):
         """'' if the test program starts and lists its cases, else why not (every case then fails)."""
         limits = self.options.limits
-        outcome = sandbox.run_limited([exe, "--list-test-cases", "--no-version"], folder, limits,
-                                      os.path.join(logs, "probe"), user=user)
+        outcome = sandbox.run([exe, "--list-test-cases", "--no-version"], limits=limits,
+                              log_path=os.path.join(logs, "probe"), user=user, inputs=[exe], private_root=self._per.work)
         if outcome.returncode == 0 and not outcome.timed_out:
             return ""
         how = sandbox.describe_ending(outcome, limits) or f"exited with status {outcome.returncode}"
@@ -303,9 +334,9 @@ class Grader:
         report_read, report_write = os.pipe()
         try:
             env = {"RT_GRADER_NONCE_FD": str(nonce_read), "RT_GRADER_REPORT_FD": str(report_write)}
-            outcome = sandbox.run_limited([exe, f"--test-case={escape_filter(case)}", "--no-version"], folder,
-                                          limits, os.path.join(logs, "case"), user=user, env_extra=env,
-                                          pass_fds=(nonce_read, report_write))
+            outcome = sandbox.run([exe, f"--test-case={escape_filter(case)}", "--no-version"], limits=limits,
+                                  log_path=os.path.join(logs, "case"), user=user, inputs=[exe], env_extra=env,
+                                  pass_fds=(nonce_read, report_write), private_root=self._per.work)
             os.close(nonce_read)
             os.close(report_write)
             nonce_read = report_write = None
@@ -321,7 +352,7 @@ class Grader:
         if outcome.output_truncated:
             output += "\n(output cut: only the start is kept)"
         text = (reason + "\n" if reason else "") + trim(output, OUTPUT_SHOWN)
-        return verdict, text.strip() or ("passed" if verdict else "failed")
+        return verdict, text.strip() or ("passed" if verdict else "failed"), outcome.timed_out
 
     def _render(self, ch, folder, logs, out_dir, user):
         limits = self.options.limits
@@ -330,31 +361,56 @@ class Grader:
                                cpu_seconds=int(self.options.render_seconds * cores) + 1,
                                memory_bytes=limits.memory_bytes, file_bytes=64 * MiB,
                                processes=limits.processes + cores)
-        image = os.path.join(folder, "render.png")
+        scratch = os.path.join(self._per.work, f"render-{ch['id']}")    # the only folder the program may write
+        make_dir(scratch, user, 0o700)
+        image = os.path.join(scratch, "render.png")
         program = os.path.join(os.path.dirname(folder), "bin", ch["id"], "program")
-        outcome = sandbox.run_limited([program, "--out", image], folder, render_limits,
-                                      os.path.join(logs, "render"), user=user)
+        outcome = sandbox.run([program, "--out", image], limits=render_limits, log_path=os.path.join(logs, "render"),
+                              user=user, inputs=[program], scratch=scratch, private_root=self._per.work)
         said = trim(_clean_doctest_output(outcome.output), 1000)
         if outcome.returncode == 3:
             return False, f"the chapter program reached an exercise that is not implemented yet:\n{said}"
         if outcome.returncode != 0 or outcome.timed_out:
             how = sandbox.describe_ending(outcome, render_limits) or f"exited with status {outcome.returncode}"
             return False, f"the chapter program {how}:\n{said}"
-        renders = os.path.join(out_dir, "renders")
-        os.makedirs(renders, exist_ok=True)
+        renders = os.path.join(out_dir, "renders")      # made fresh by grade(), the grader's own
         actual = os.path.join(renders, f"{ch['id']}.png")
         diff = os.path.join(renders, f"{ch['id']}.diff.png")
-        if not _copy_regular_file(image, actual, 64 * MiB):
+        try:
+            picture = fsutil.read_regular(image, 64 * MiB)
+        except (OSError, fsutil.Refused):
             return False, "the chapter program did not write its picture"
-        imgcmp = os.path.join(self.tree.build, "bin", "imgcmp")
-        result = subprocess.run([imgcmp, actual, ch["reference"], "--diff", diff], capture_output=True, text=True,
-                                timeout=120)
-        figures = (result.stdout + result.stderr).strip()
-        where = f"your render: {actual}" + (f"\ndifference image: {diff}" if os.path.exists(diff) else "")
-        if result.returncode == 0:
+        fsutil.write_new(renders, os.path.basename(actual), picture)
+        figures, matched, diff_png = self._imgcmp(ch, picture, logs, user)
+        if diff_png:
+            fsutil.write_new(renders, os.path.basename(diff), diff_png)
+        where = f"your render: {actual}" + (f"\ndifference image: {diff}" if diff_png else "")
+        if matched:
             return True, f"the picture matches the reference within tolerance: {figures}\n{where}"
         return False, (f"the picture differs from the reference render beyond tolerance: {figures}\n{where}\n"
                        "Open the difference image to see where.")
+
+    def _imgcmp(self, ch, picture, logs, user):
+        """imgcmp on the student's picture, as the sandbox user with limits (it
+        decodes a file the student made). Returns (figures, matched, diff bytes or None)."""
+        scratch = os.path.join(self._per.work, f"imgcmp-{ch['id']}")
+        make_dir(scratch, user, 0o700)
+        fsutil.write_new(scratch, "render.png", picture)
+        imgcmp = os.path.join(self.tree.build, "bin", "imgcmp")
+        limits = Limits(wall_seconds=60, cpu_seconds=60, memory_bytes=1024 * MiB, file_bytes=64 * MiB, processes=8)
+        outcome = sandbox.run([imgcmp, os.path.join(scratch, "render.png"), ch["reference"],
+                               "--diff", os.path.join(scratch, "diff.png")],
+                              limits=limits, log_path=os.path.join(logs, "imgcmp"), user=user,
+                              inputs=[imgcmp, ch["reference"]], scratch=scratch, private_root=self._per.work)
+        figures = "\n".join(line for line in outcome.output.strip().splitlines()
+                            if not line.startswith("difference image:"))
+        try:
+            diff_png = fsutil.read_regular(os.path.join(scratch, "diff.png"), 64 * MiB)
+        except (OSError, fsutil.Refused):
+            diff_png = None
+        if outcome.timed_out or outcome.returncode < 0:
+            figures = f"imgcmp {sandbox.describe_ending(outcome, limits)} on this picture"
+        return figures, outcome.returncode == 0 and not outcome.timed_out, diff_png
 
     # --- scoring ------------------------------------------------------------------------
     def _result(self, name, kind, cid, passed, output):
@@ -435,24 +491,3 @@ def _hidden_feedback(text):
         if k not in seen:
             seen.append(k)
     return "\n".join(seen[:10])
-
-
-def _copy_regular_file(src, dst, cap):
-    try:
-        fd = os.open(src, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
-    except OSError:
-        return False
-    try:
-        if not stat.S_ISREG(os.fstat(fd).st_mode):
-            return False
-        with open(dst, "wb") as out:
-            remaining = cap
-            while remaining > 0:
-                chunk = os.read(fd, min(remaining, 1 << 20))
-                if not chunk:
-                    break
-                out.write(chunk)
-                remaining -= len(chunk)
-        return True
-    finally:
-        os.close(fd)

@@ -5,6 +5,9 @@ always complete, valid JSON, whatever happened while grading."""
 
 import json
 import os
+import re
+
+from . import fsutil
 
 
 def gradescope(results, notes, elapsed, chapters):
@@ -45,13 +48,12 @@ def failure(message, elapsed=0.0):
 
 
 def write(data, path):
+    """Atomically, never through a link planted in the folder (fsutil.write_atomic)."""
     folder = os.path.dirname(os.path.abspath(path))
     os.makedirs(folder, exist_ok=True)
-    tmp = path + ".tmp"
-    with open(tmp, "w") as f:
-        json.dump(data, f, indent=2)
-        f.write("\n")
-    os.replace(tmp, path)
+    # As root, for root only: a sandbox user (fallback mode) must not read another submission's results.
+    mode = 0o600 if os.geteuid() == 0 else 0o644
+    fsutil.write_atomic(path, (json.dumps(data, indent=2) + "\n").encode(), mode)
 
 
 def summary(data, chapters, path=None):
@@ -83,4 +85,10 @@ def summary(data, chapters, path=None):
             out.append(f"    ... and {len(failed) - 8} more failed (see the results file)")
     out.append(data["output"])
     out.append(f"({data['execution_time']} s)" + (f" -> {path}" if path else ""))
-    return "\n".join(out)
+    return terminal_safe("\n".join(out))
+
+
+def terminal_safe(text):
+    """A student's text as the instructor's terminal should show it: control
+    characters (escape sequences could rewrite the screen or the title) as \\xNN."""
+    return re.sub(r"[\x00-\x08\x0b-\x1f\x7f-\x9f]", lambda m: f"\\x{ord(m.group()):02x}", text)

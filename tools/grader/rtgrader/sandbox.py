@@ -1,17 +1,29 @@
-"""Running a submission's code with limits.
+"""Running a submission's code with limits, in a sandbox.
 
 Every process that runs student code (the compiler on their file, each test
-case, the chapter program) goes through run_limited():
+case, the chapter program) and every step that reads what it produced
+(imgcmp) goes through run():
 
-- its own session and process group, killed as a whole at the wall-clock limit
-  and again when it ends (a forked child cannot outlive its test);
-- resource limits: CPU seconds, address space, size of any file written
-  (which also caps the captured output), number of processes;
-- stdout and stderr go to a file the grader opened, read back capped;
-- when the grader runs as root, the process runs as an unprivileged user
-  ("rt-grader-N", one per parallel worker) that cannot read the hidden tests,
-  the solutions or the build tree; every process of that user is killed after
-  each run, which also catches children that escaped the process group.
+    run(argv, limits=..., log_path=..., user=(uid, gid) or None,
+        inputs=[paths it may read], scratch=folder it may write or None, ...)
+
+- namespaces mode (bubblewrap, see isolation.py): the process sees /usr,
+  a few files of /etc, its `inputs` read-only at their own paths, `scratch`
+  read-write (or, without one, only a private /tmp as its working folder),
+  a private size-limited /tmp and /dev/shm, its own /proc (its own processes
+  only), no network; nothing else of the machine exists for it (no .git, no
+  hidden tests, no solutions, no other submission, no results, no grader).
+  When the first process ends, its PID namespace ends and takes every other
+  process with it. As root it runs as the unprivileged sandbox user.
+- fallback (users / none): today's isolation by user; inputs the sandbox user
+  cannot read (a repository in root's 0700 home) are copied to a readable
+  place first; leftovers are killed and removed by user id.
+- always: its own session and process group, killed at the wall-clock limit;
+  resource limits (CPU seconds, address space, size of any file written,
+  which also caps the captured output and every memfd, open files,
+  processes); a cgroup v2 per run where possible (cgroup.kill, memory.max
+  counting memfd and tmpfs, pids.max); stdout and stderr go to a file the
+  grader opened, read back capped.
 """
 
 import fcntl
@@ -19,6 +31,7 @@ import os
 import pwd
 import resource
 import secrets
+import shutil
 import signal
 import stat
 import subprocess
@@ -27,8 +40,14 @@ import time
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 
+from . import fsutil, isolation
+
 MiB = 1024 * 1024
 _users_lock = threading.Lock()
+_mirror_lock = threading.Lock()
+# World-writable places a sandbox user could leave files in when there is no
+# private /tmp (fallback): emptied of that user's entries after every run.
+WORLD_WRITABLE = ("/tmp", "/var/tmp", "/dev/shm", "/run/lock", "/dev/mqueue")
 
 
 @dataclass
@@ -36,8 +55,11 @@ class Limits:
     wall_seconds: float = 10.0
     cpu_seconds: int = 11
     memory_bytes: int = 2048 * MiB
-    file_bytes: int = 8 * MiB      # also the most output a process may print
+    file_bytes: int = 8 * MiB      # also the most output a process may print, and the largest memfd
     processes: int = 64
+    open_files: int = 64           # with file_bytes, bounds what memfds can hold without a memory cgroup
+    tmp_bytes: int = 64 * MiB      # size of the private /tmp (namespaces mode)
+    shm_bytes: int = 16 * MiB      # size of the private /dev/shm (namespaces mode)
 
 
 @dataclass
@@ -106,18 +128,17 @@ def worker_slot(folder):
 
 
 def _processes_of_uid(uid):
+    """Live processes (not zombies, which only wait to be reaped) of uid."""
     pids = []
     for name in os.listdir("/proc"):
         if not name.isdigit():
             continue
         try:
             with open(f"/proc/{name}/status") as f:
-                for line in f:
-                    if line.startswith("Uid:"):
-                        if int(line.split()[1]) == uid:
-                            pids.append(int(name))
-                        break
-        except OSError:
+                fields = dict(line.split(":", 1) for line in f if ":" in line)
+            if uid in (int(x) for x in fields["Uid"].split()) and not fields["State"].strip().startswith(("Z", "X")):
+                pids.append(int(name))
+        except (OSError, KeyError, ValueError):
             pass
     return pids
 
@@ -138,24 +159,83 @@ def _processes_with_token(token):
     return pids
 
 
-def _kill_everything(pgid, uid, token):
-    """Kills the process group, and every process of the sandbox user (root)
-    or carrying the run's token (not root), until none is left."""
+def _kill_as(uid, gid):
+    """kill(-1, SIGKILL) sent by the sandbox user itself: the kernel delivers it
+    to every process of that user in one pass, so a process that keeps forking
+    and letting its parent exit cannot slip between listing and killing."""
+    def kill_all():   # runs in the child after it became uid (and never execs)
+        os.kill(-1, signal.SIGKILL)
+        os._exit(0)
+    subprocess.Popen(["/bin/true"], user=uid, group=gid, extra_groups=[], preexec_fn=kill_all,
+                     stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).wait()
+
+
+def _stop_and_kill(find):
+    """Without root: stop what find() lists (a stopped process cannot fork),
+    list again until nothing new appears, then kill them all."""
+    stopped = set()
     for _ in range(100):
-        try:
-            os.killpg(pgid, signal.SIGKILL)
-        except (ProcessLookupError, PermissionError):
-            pass
-        pids = _processes_of_uid(uid) if uid is not None else _processes_with_token(token)
-        pids = [p for p in pids if p != os.getpid()]
-        if not pids:
-            return
-        for p in pids:
+        new = [p for p in find() if p != os.getpid() and p not in stopped]
+        if not new:
+            break
+        for p in new:
             try:
-                os.kill(p, signal.SIGKILL)
-            except (ProcessLookupError, PermissionError):
+                os.kill(p, signal.SIGSTOP)
+            except OSError:
                 pass
-        time.sleep(0.02)
+            stopped.add(p)
+    for p in stopped:
+        try:
+            os.kill(p, signal.SIGKILL)
+            os.kill(p, signal.SIGCONT)
+        except OSError:
+            pass
+
+
+def _end_run(pgid, iso, user, token, cgroup):
+    """Ends everything the run started."""
+    try:
+        os.killpg(pgid, signal.SIGKILL)
+    except (ProcessLookupError, PermissionError):
+        pass
+    if cgroup:
+        iso.cgroup.kill_and_remove(cgroup)
+    if iso.mode == isolation.NAMESPACES:
+        return      # the PID namespace ended with its first process, taking every other one along
+    if user is not None:
+        for _ in range(20):
+            _kill_as(*user)
+            if not _processes_of_uid(user[0]):
+                return
+            time.sleep(0.01)
+    else:
+        _stop_and_kill(lambda: _processes_with_token(token))
+
+
+def _remove_leftovers(uid):
+    """Fallback by user: what the run left in world-writable folders and
+    System V IPC (there is no private /tmp to discard)."""
+    for folder in WORLD_WRITABLE:
+        try:
+            names = os.listdir(folder)
+        except OSError:
+            continue
+        for name in names:
+            path = os.path.join(folder, name)
+            try:
+                if os.lstat(path).st_uid == uid:
+                    fsutil.remove_tree(path)
+            except OSError:
+                pass
+    for kind, flag, column in (("shm", "-m", 7), ("sem", "-s", 4), ("msg", "-q", 7)):
+        try:
+            with open(f"/proc/sysvipc/{kind}") as f:
+                rows = [line.split() for line in f.readlines()[1:]]
+        except OSError:
+            continue
+        for row in rows:
+            if len(row) > column and row[column] == str(uid) and shutil.which("ipcrm"):
+                subprocess.run(["ipcrm", flag, row[1]], capture_output=True)
 
 
 def _count_own_threads():
@@ -182,45 +262,201 @@ def read_capped(path, cap):
     return data[:cap].decode("utf-8", errors="replace"), truncated
 
 
-def run_limited(cmd, cwd, limits, log_path, user=None, env_extra=None, pass_fds=(), output_cap=64 * 1024):
-    """Runs cmd under the limits; user is (uid, gid) or None. Returns an Outcome."""
+def _readable_by_others(path):
+    """Can a user that is neither owner nor in the group read path (and reach it)?"""
+    path = os.path.abspath(path)
+    try:
+        info = os.stat(path)
+    except OSError:
+        return False
+    if stat.S_ISDIR(info.st_mode):
+        if info.st_mode & 0o005 != 0o005:
+            return False
+    elif not info.st_mode & 0o005:      # readable, or executable only (the hidden tests' program)
+        return False
+    parent = os.path.dirname(path)
+    while True:
+        if os.stat(parent).st_mode & 0o001 == 0:
+            return False
+        if parent == "/":
+            return True
+        parent = os.path.dirname(parent)
+
+
+def _mirror(inputs, mirror_root):
+    """Fallback: inputs the sandbox user cannot read (e.g. a repository in
+    root's 0700 home) are copied under mirror_root (a folder the grader made,
+    traversable by the sandbox user), once per grading. Returns {original: copy}."""
+    moved = {}
+    for path in inputs:
+        path = os.path.abspath(path)
+        if _readable_by_others(path):
+            continue
+        copy = os.path.join(mirror_root, "inputs", path.lstrip(os.sep))
+        with _mirror_lock:
+            if not os.path.exists(copy):
+                os.makedirs(os.path.dirname(copy), mode=0o755, exist_ok=True)
+                for d in _ancestors(os.path.dirname(copy), mirror_root):
+                    os.chmod(d, 0o755)
+                if os.path.isdir(path):
+                    shutil.copytree(path, copy, symlinks=True)
+                else:
+                    shutil.copy2(path, copy)
+                _open_up(copy)
+        moved[path] = copy
+    return moved
+
+
+def _ancestors(path, stop):
+    out = []
+    while path.startswith(stop) and path != stop:
+        out.append(path)
+        path = os.path.dirname(path)
+    return out
+
+
+def _open_up(path):
+    if os.path.isdir(path):
+        for dirpath, dirnames, filenames in os.walk(path):
+            os.chmod(dirpath, 0o755)
+            for n in filenames:
+                os.chmod(os.path.join(dirpath, n), 0o644)
+    else:
+        os.chmod(path, 0o755 if os.stat(path).st_mode & 0o100 else 0o644)
+
+
+def _replace_prefixes(arg, moved):
+    """arg with the first (longest) original path in it replaced by its copy."""
+    for original in sorted(moved, key=len, reverse=True):
+        at = arg.find(original)
+        end = at + len(original)
+        if at >= 0 and (end == len(arg) or arg[end] == os.sep):
+            return arg[:at] + moved[original] + arg[end:]
+    return arg
+
+
+def _bwrap_command(iso, argv, limits, inputs, scratch, cwd, user):
+    args = [iso.bwrap] + isolation.namespace_args(limits.tmp_bytes, limits.shm_bytes) + isolation.system_binds()
+    binds = [("--ro-bind", os.path.abspath(p)) for p in inputs]
+    if scratch:
+        binds.append(("--bind", os.path.abspath(scratch)))
+    made = {"/", "/usr", "/etc", "/tmp", "/dev", "/dev/shm", "/proc"}
+    for how, path in sorted(binds, key=lambda b: b[1]):
+        parent = os.path.dirname(path)
+        missing = []
+        while parent not in made:
+            missing.append(parent)
+            parent = os.path.dirname(parent)
+        for d in reversed(missing):   # bwrap would make them 0700, unreachable for the sandbox user
+            args += ["--perms", "0755", "--dir", d]
+            made.add(d)
+        args += [how, path, path]
+        made.add(path)
+    args += ["--chdir", cwd, "--"]
+    if user is not None:
+        args += isolation.drop_privileges(iso.setpriv, *user)
+    return args + list(argv)
+
+
+def run(argv, *, limits, log_path, user=None, inputs=(), scratch=None, env_extra=None, pass_fds=(),
+        output_cap=64 * 1024, private_root=None, iso=None):
+    """Runs argv in the sandbox under the limits; returns an Outcome.
+
+    user:     (uid, gid) of the sandbox user (root), or None (the grader's own user)
+    inputs:   files and folders it may read (bound read-only at their own path;
+              in the fallback, copied under private_root when the user cannot read them)
+    scratch:  a folder it may write, its working folder; None: a private empty
+              folder (/tmp of its own in namespaces mode), discarded afterwards
+    private_root: a folder of the grader's, traversable by the sandbox user, for
+              the fallback's copies and private folders (default: the system's temp folder)
+    pass_fds: descriptors it inherits (pipes to the grader)
+    """
+    iso = iso or isolation.detect()
     token = secrets.token_hex(8)
+    private_root = private_root or "/tmp"
+    moved, own_cwd = {}, None
+    if iso.mode == isolation.NAMESPACES:
+        cwd = os.path.abspath(scratch) if scratch else "/tmp"
+        cmd = _bwrap_command(iso, argv, limits, inputs, scratch, cwd, user)
+    else:
+        if user is not None:
+            moved = _mirror(inputs, private_root)
+        if scratch:
+            cwd = os.path.abspath(scratch)
+        else:
+            own_cwd = cwd = fsutil.new_private_folder(private_root, user)
+        cmd = [_replace_prefixes(a, moved) for a in argv]
+        if user is not None and iso.setpriv:
+            cmd = isolation.drop_privileges(iso.setpriv, *user) + cmd
     env = {
         "PATH": "/usr/local/bin:/usr/bin:/bin",
         "HOME": cwd,
-        "TMPDIR": cwd,
+        "TMPDIR": "/tmp" if iso.mode == isolation.NAMESPACES else cwd,
         "LANG": "C.UTF-8",
         "MALLOC_ARENA_MAX": "2",        # threads' malloc arenas would eat the address-space limit
         "RT_GRADER_TOKEN": token,
     }
     env.update(env_extra or {})
-    nproc = limits.processes if user is not None else _count_own_threads() + limits.processes
+    if user is None and iso.mode != isolation.NAMESPACES:
+        nproc = _count_own_threads() + limits.processes
+    elif user is None:
+        nproc = _count_own_threads() + limits.processes + 8
+    else:
+        nproc = limits.processes
+    cgroup = iso.cgroup.create(limits.memory_bytes, limits.processes + 8) if iso.cgroup else None
 
-    def set_limits():  # runs in the child after setuid, just before exec
+    def prepare_child():  # runs in the child (as root when root), just before exec
+        if cgroup and os.geteuid() == os.getuid():
+            isolation.join_cgroup(cgroup)
         resource.setrlimit(resource.RLIMIT_CPU, (limits.cpu_seconds, limits.cpu_seconds + 1))
         resource.setrlimit(resource.RLIMIT_AS, (limits.memory_bytes, limits.memory_bytes))
         resource.setrlimit(resource.RLIMIT_FSIZE, (limits.file_bytes, limits.file_bytes))
         resource.setrlimit(resource.RLIMIT_NPROC, (nproc, nproc))
+        resource.setrlimit(resource.RLIMIT_NOFILE, (limits.open_files, limits.open_files))
         resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
 
     kwargs = {}
-    if user is not None:
+    if user is not None and iso.mode != isolation.NAMESPACES and not iso.setpriv:
         kwargs.update(user=user[0], group=user[1], extra_groups=[])
     start = time.monotonic()
-    with open(log_path, "wb") as log:
-        proc = subprocess.Popen(cmd, cwd=cwd, env=env, stdin=subprocess.DEVNULL, stdout=log, stderr=log,
-                                start_new_session=True, preexec_fn=set_limits, pass_fds=pass_fds,
-                                close_fds=True, **kwargs)
-    timed_out = False
     try:
-        proc.wait(timeout=limits.wall_seconds)
-    except subprocess.TimeoutExpired:
-        timed_out = True
-    _kill_everything(proc.pid, user[0] if user is not None else None, token)
-    proc.wait()
+        with open(log_path, "wb") as log:
+            proc = subprocess.Popen(cmd, cwd=cwd if iso.mode != isolation.NAMESPACES else "/",
+                                    env=env, stdin=subprocess.DEVNULL, stdout=log, stderr=log,
+                                    start_new_session=True, preexec_fn=prepare_child, pass_fds=pass_fds,
+                                    close_fds=True, **kwargs)
+        timed_out = False
+        try:
+            proc.wait(timeout=limits.wall_seconds)
+        except subprocess.TimeoutExpired:
+            timed_out = True
+        oom = bool(cgroup) and iso.cgroup.oom_killed(cgroup)
+        _end_run(proc.pid, iso, user, token, cgroup)
+        proc.wait()
+    finally:
+        if cgroup and os.path.isdir(cgroup):
+            iso.cgroup.kill_and_remove(cgroup)
+        if iso.mode != isolation.NAMESPACES and user is not None:
+            _remove_leftovers(user[0])
+        if own_cwd:
+            fsutil.remove_tree(own_cwd)
     seconds = time.monotonic() - start
     output, truncated = read_capped(log_path, output_cap)
-    return Outcome(proc.returncode, timed_out, output, truncated, seconds)
+    for original, copy in sorted(moved.items(), key=lambda m: len(m[1]), reverse=True):
+        output = output.replace(copy, original)
+    rc = proc.returncode
+    if iso.mode == isolation.NAMESPACES and 128 < rc < 128 + 65:
+        rc = -(rc - 128)      # bwrap reports "killed by signal N" as exit status 128 + N
+    if oom and rc >= 0:
+        rc = -signal.SIGKILL
+    return Outcome(rc, timed_out, output, truncated, seconds, {"oom": oom, "mode": iso.mode})
+
+
+def run_limited(cmd, cwd, limits, log_path, user=None, env_extra=None, pass_fds=(), output_cap=64 * 1024,
+                inputs=()):
+    """Earlier interface: cwd becomes the run's scratch folder."""
+    return run(cmd, limits=limits, log_path=log_path, user=user, inputs=inputs, scratch=cwd, env_extra=env_extra,
+               pass_fds=pass_fds, output_cap=output_cap, private_root=os.path.dirname(os.path.abspath(cwd)))
 
 
 def describe_ending(outcome, limits):
@@ -240,7 +476,39 @@ def describe_ending(outcome, limits):
         signal.SIGABRT: "aborted (abort(), a failed assert, or an exception nobody caught)",
         signal.SIGXCPU: f"used more than {limits.cpu_seconds} s of CPU time and was stopped",
         signal.SIGXFSZ: f"wrote more than {limits.file_bytes // MiB} MiB (output or files) and was stopped",
-        signal.SIGKILL: "was killed (it went past a time or memory limit)",
+        signal.SIGKILL: "was killed (it went past a time or memory limit: memory.max counts memfd and "
+                        "/dev/shm files too)",
         signal.SIGILL: "crashed with an illegal instruction",
     }
     return reasons.get(sig, f"was killed by signal {signal.Signals(sig).name if sig in signal.valid_signals() else sig}")
+
+
+# Top folders of the instructor's source a compile may see when its include
+# path names the repository root (`#include "common/math.hpp"`): the shared
+# code and the chapters' headers. Never solutions/, tests/ or tools/.
+PUBLIC_TOP = ("common", "chapters")
+
+
+def include_inputs(args, source_root, public_top=PUBLIC_TOP):
+    """What a compile command may read of the instructor's tree: its include
+    folders, the repository root narrowed to public_top. Folders outside the
+    tree (the system's) are already part of every sandbox."""
+    source_root = os.path.abspath(source_root)
+    folders = []
+    it = iter(args)
+    for a in it:
+        for flag in ("-I", "-isystem", "-iquote", "-idirafter"):
+            if a == flag:
+                folders.append(next(it, ""))
+            elif a.startswith(flag) and len(a) > len(flag) and flag == "-I":
+                folders.append(a[2:])
+    inputs = []
+    for d in folders:
+        d = os.path.abspath(d)
+        if d == source_root:
+            inputs += [os.path.join(d, t) for t in public_top if os.path.isdir(os.path.join(d, t))]
+        elif d.startswith(source_root + os.sep) and os.path.isdir(d):
+            rel = os.path.relpath(d, source_root).split(os.sep)[0]
+            if rel in public_top:
+                inputs.append(d)
+    return sorted(set(inputs))

@@ -20,7 +20,6 @@ lets ninja archive and link the chapter's executables: nothing else rebuilds.
 """
 
 import filecmp
-import fcntl
 import glob
 import json
 import os
@@ -29,7 +28,7 @@ import shutil
 import subprocess
 from contextlib import contextmanager
 
-from . import sandbox
+from . import fsutil, sandbox
 
 SKIP_AT_TOP = {".git", "out"}
 PRIVATE_DIRS = ("solutions", "tests/hidden", "tests/fixtures")
@@ -43,12 +42,8 @@ def repository_root():
 def locked(folder):
     """One grader at a time may change the build tree (the batch runs several)."""
     os.makedirs(folder, exist_ok=True)
-    with open(os.path.join(folder, "grader.lock"), "w") as f:
-        fcntl.flock(f, fcntl.LOCK_EX)
-        try:
-            yield
-        finally:
-            fcntl.flock(f, fcntl.LOCK_UN)
+    with fsutil.private_lock(os.path.join(folder, "grader.lock")):   # 0600: no sandbox user can hold it
+        yield
 
 
 def _skipped(rel):
@@ -104,15 +99,21 @@ def protect(folder):
         path = os.path.join(folder, rel)
         if os.path.isdir(path):
             os.chmod(path, 0o700)
+    for path in (os.path.join(source, "tests", "manifest.json"), os.path.join(folder, "state.json")):
+        if os.path.isfile(path):
+            os.chmod(path, 0o600)     # the points and the hidden tests' names
 
 
 def protect_repository(repo):
     """As root: the instructor repository's private folders are root's alone
     too, so a submission cannot read them by their absolute path."""
-    for rel in PRIVATE_DIRS:
+    for rel in PRIVATE_DIRS + (".git",):     # .git's packs hold every version of the private folders
         path = os.path.join(repo, rel)
         if os.path.isdir(path) and os.stat(path).st_mode & 0o077:
             os.chmod(path, 0o700)
+    manifest_path = os.path.join(repo, "tests", "manifest.json")
+    if os.path.isfile(manifest_path):
+        os.chmod(manifest_path, 0o600)
 
 
 class Tree:

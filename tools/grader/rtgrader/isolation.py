@@ -1,0 +1,311 @@
+"""What this machine lets the grader use to contain a student's code.
+
+Three modes, best first (tools/grader/README.md, "Isolation"):
+
+  namespaces  bubblewrap (Debian's `bwrap`) runs each process in its own mount
+              namespace (only the files it needs, a private /tmp and
+              /dev/shm), PID namespace (nothing outlives the run), network,
+              IPC and UTS namespaces. As root the code then runs as an
+              unprivileged sandbox user.
+  users       no namespaces (a container that forbids them, or forced):
+              as root, the code runs as an unprivileged sandbox user that
+              cannot read the private files; leftovers are found and removed
+              by that user's id. Said loudly in the output and results.json.
+  none        no namespaces and not root: the code runs as the grader's own
+              user with resource limits only. Said loudly too.
+
+Independently, a cgroup v2 per run when the grader may create cgroups:
+cgroup.kill ends every process of the run at once, and memory.max (which
+counts memfd and tmpfs pages, unlike the address-space limit) and pids.max
+when those controllers can be enabled.
+
+RT_GRADER_ISOLATION=fallback (or users / none) forces the fallback, e.g.
+in the grader's own tests; RT_GRADER_CGROUP=off turns cgroups off.
+"""
+
+import os
+import shutil
+import subprocess
+import threading
+from dataclasses import dataclass, field
+
+NAMESPACES, USERS, NONE = "namespaces", "users", "none"
+_lock = threading.Lock()
+_cached = {}
+
+
+@dataclass
+class Isolation:
+    mode: str
+    bwrap: str = None
+    setpriv: str = None
+    cgroup: "Cgroups" = None
+    notes: list = field(default_factory=list)   # loud warnings for the output and results.json
+
+    def describe(self):
+        """One line for the grader's output."""
+        what = {NAMESPACES: "namespaces (bubblewrap: private files, /tmp, processes and network)",
+                USERS: "FALLBACK by user (no namespaces): unprivileged user, limits, clean-up by user id",
+                NONE: "FALLBACK, limits only (no namespaces, not root)"}[self.mode]
+        cg = self.cgroup.describe() if self.cgroup else "no cgroup"
+        return f"isolation: {what}; {cg}"
+
+
+def system_binds():
+    """bwrap arguments for the read-only system: /usr and the usual links to it,
+    and only the few files of /etc the compiler and the dynamic loader read."""
+    args = ["--ro-bind", "/usr", "/usr"]
+    for top in ("bin", "sbin", "lib", "lib32", "lib64", "libx32"):
+        path = "/" + top
+        if os.path.islink(path):
+            args += ["--symlink", os.readlink(path), path]
+        elif os.path.isdir(path):
+            args += ["--ro-bind", path, path]
+    args += ["--perms", "0755", "--dir", "/etc"]
+    for name in ("ld.so.cache", "ld.so.conf", "ld.so.conf.d", "alternatives"):
+        if os.path.exists("/etc/" + name):
+            args += ["--ro-bind", "/etc/" + name, "/etc/" + name]
+    return args
+
+
+def namespace_args(tmp_bytes, shm_bytes):
+    """The namespaces and the private, size-limited /tmp and /dev/shm."""
+    args = ["--unshare-pid", "--unshare-net", "--unshare-ipc", "--unshare-uts", "--unshare-cgroup-try",
+            "--die-with-parent", "--new-session", "--proc", "/proc", "--dev", "/dev",
+            "--perms", "1777", "--size", str(tmp_bytes), "--tmpfs", "/tmp",
+            "--perms", "1777", "--size", str(shm_bytes), "--tmpfs", "/dev/shm"]
+    if os.geteuid() != 0:
+        # Unprivileged bwrap works in a user namespace; forbid the code a further one.
+        args = ["--unshare-user", "--disable-userns"] + args
+    return args
+
+
+def drop_privileges(setpriv, uid, gid):
+    """As root: the command that turns the process into the sandbox user
+    (no groups, no capabilities, no setuid programs)."""
+    return [setpriv, f"--reuid={uid}", f"--regid={gid}", "--clear-groups", "--inh-caps=-all",
+            "--bounding-set=-all", "--no-new-privs", "--"]
+
+
+def _probe_bwrap(bwrap, setpriv):
+    """'' when a bwrap sandbox starts here (and can drop to an unprivileged
+    user when root), else why not."""
+    cmd = [bwrap] + namespace_args(1 << 20, 1 << 20) + system_binds() + ["--"]
+    if os.geteuid() == 0:
+        cmd += drop_privileges(setpriv, 65534, 65534)
+    cmd += ["/bin/sh", "-c", "test ! -e /etc/passwd && test -d /proc/self && echo ok"]
+    try:
+        result = subprocess.run(cmd, capture_output=True, text=True, timeout=30, stdin=subprocess.DEVNULL)
+    except (OSError, subprocess.TimeoutExpired) as e:
+        return f"bwrap could not be run: {e}"
+    if result.returncode == 0 and result.stdout.strip() == "ok":
+        return ""
+    return f"bwrap failed here (exit {result.returncode}): {(result.stderr or result.stdout).strip()[:300]}"
+
+
+def detect():
+    """The isolation this machine allows (found once per process)."""
+    forced = os.environ.get("RT_GRADER_ISOLATION", "auto").strip().lower()
+    with _lock:
+        if forced in _cached:
+            return _cached[forced]
+        root = os.geteuid() == 0
+        fallback = USERS if root else NONE
+        iso = None
+        bwrap = shutil.which("bwrap")
+        setpriv = shutil.which("setpriv")
+        if forced in ("fallback", "users", "none"):
+            iso = Isolation(fallback, setpriv=setpriv,
+                            notes=[f"namespaces turned off (RT_GRADER_ISOLATION={forced})"])
+        else:
+            if not bwrap:
+                why = "bubblewrap (bwrap) is not installed (Debian package bubblewrap, tools/debian-packages.txt)"
+            elif root and not setpriv:
+                why = "setpriv (util-linux) is missing"
+            else:
+                why = _probe_bwrap(bwrap, setpriv)
+            if why:
+                iso = Isolation(fallback, setpriv=setpriv, notes=[f"no namespaces: {why}"])
+            else:
+                iso = Isolation(NAMESPACES, bwrap=bwrap, setpriv=setpriv)
+        if iso.mode != NAMESPACES:
+            iso.notes.append(
+                "WARNING: the submission ran WITHOUT the namespace sandbox, "
+                + ("as an unprivileged user with resource limits (files readable by every user, the grader's "
+                   "command line and the network were within its reach)" if root else
+                   "as the grader's own user with resource limits only (it could read anything this user can)"))
+        if os.environ.get("RT_GRADER_CGROUP", "auto").lower() != "off":
+            iso.cgroup = Cgroups.detect()
+        _cached[forced] = iso
+        return iso
+
+
+class Cgroups:
+    """A cgroup v2 per run, below one the grader creates for itself."""
+
+    def __init__(self, base, controllers, can_kill):
+        self.base = base
+        self.controllers = controllers        # subset of {"memory", "pids"}
+        self.can_kill = can_kill              # cgroup.kill exists (Linux 5.14)
+        self._counter = 0
+        self._count_lock = threading.Lock()
+
+    def describe(self):
+        enabled = ", ".join(sorted(self.controllers)) or "no memory/pids controllers (not delegated here)"
+        return f"cgroup v2 per run in {self.base} ({enabled}{'; cgroup.kill' if self.can_kill else ''})"
+
+    @staticmethod
+    def _mount_point():
+        try:
+            with open("/proc/self/mountinfo") as f:
+                for line in f:
+                    left, _, right = line.partition(" - ")
+                    if right.split()[0] == "cgroup2":
+                        return left.split()[4]
+        except OSError:
+            pass
+        return None
+
+    @classmethod
+    def detect(cls):
+        mount = cls._mount_point()
+        if not mount:
+            return None
+        own = None
+        try:
+            with open("/proc/self/cgroup") as f:
+                for line in f:
+                    if line.startswith("0::"):
+                        own = line[3:].strip()
+        except OSError:
+            return None
+        if own is None:
+            return None
+        parent = os.path.normpath(mount + "/" + own)
+        _remove_stale(parent)
+        base = os.path.join(parent, f"rt-grader-{os.getpid()}")
+        try:
+            os.makedirs(base, exist_ok=True)
+        except OSError:
+            return None
+        controllers = set()
+        for c in ("memory", "pids"):
+            # A controller reaches our runs only when enabled in the parent's and our base's subtree.
+            if _enable(parent, c) and _enable(base, c):
+                controllers.add(c)
+        cg = cls(base, controllers, os.path.exists(os.path.join(base, "cgroup.kill")))
+        import atexit
+        atexit.register(_remove_quietly, base)
+        return cg
+
+    def create(self, memory_bytes, processes):
+        """A new cgroup for one run, with its limits; returns its path or None."""
+        with self._count_lock:
+            self._counter += 1
+            n = self._counter
+        path = os.path.join(self.base, f"run-{n}")
+        try:
+            os.mkdir(path)
+        except OSError:
+            return None
+        if "memory" in self.controllers:
+            _write(path, "memory.max", str(memory_bytes))
+            _write(path, "memory.swap.max", "0")
+        if "pids" in self.controllers:
+            _write(path, "pids.max", str(processes))
+        return path
+
+    @staticmethod
+    def oom_killed(path):
+        try:
+            with open(os.path.join(path, "memory.events")) as f:
+                return any(line.split()[0] == "oom_kill" and int(line.split()[1]) > 0 for line in f)
+        except (OSError, ValueError, IndexError):
+            return False
+
+    def kill_and_remove(self, path):
+        """Ends every process of the run (all at once with cgroup.kill) and removes the cgroup."""
+        import signal
+        import time
+        for _ in range(200):
+            if self.can_kill:
+                _write(path, "cgroup.kill", "1")
+            else:
+                for pid in _pids(path):
+                    try:
+                        os.kill(pid, signal.SIGKILL)
+                    except OSError:
+                        pass
+            try:
+                os.rmdir(path)
+                return True
+            except FileNotFoundError:
+                return True
+            except OSError:
+                time.sleep(0.005)  # still populated: the kill takes a moment
+        return False
+
+
+def join_cgroup(path):
+    """In the child, before exec: move this process into the run's cgroup."""
+    fd = os.open(os.path.join(path, "cgroup.procs"), os.O_WRONLY)
+    try:
+        os.write(fd, b"0")
+    finally:
+        os.close(fd)
+
+
+def _pids(path):
+    try:
+        with open(os.path.join(path, "cgroup.procs")) as f:
+            return [int(x) for x in f.read().split()]
+    except OSError:
+        return []
+
+
+def _enable(folder, controller):
+    try:
+        with open(os.path.join(folder, "cgroup.subtree_control")) as f:
+            if controller in f.read().split():
+                return True
+        with open(os.path.join(folder, "cgroup.controllers")) as f:
+            if controller not in f.read().split():
+                return False
+        return _write(folder, "cgroup.subtree_control", "+" + controller)
+    except OSError:
+        return False
+
+
+def _write(folder, name, value):
+    try:
+        with open(os.path.join(folder, name), "w") as f:
+            f.write(value)
+        return True
+    except OSError:
+        return False
+
+
+def _remove_quietly(base):
+    try:
+        for name in os.listdir(base):
+            if name.startswith("run-"):
+                _write(os.path.join(base, name), "cgroup.kill", "1")
+                try:
+                    os.rmdir(os.path.join(base, name))
+                except OSError:
+                    pass
+        os.rmdir(base)
+    except OSError:
+        pass
+
+
+def _remove_stale(parent):
+    """Cgroups left by graders that were killed (their process is gone)."""
+    try:
+        names = os.listdir(parent)
+    except OSError:
+        return
+    for name in names:
+        pid = name[len("rt-grader-"):]
+        if name.startswith("rt-grader-") and pid.isdigit() and not os.path.exists(f"/proc/{pid}"):
+            _remove_quietly(os.path.join(parent, name))
