@@ -72,6 +72,20 @@ bool compare_with_reference(const chapter_program& program, const image& img, co
 
 }  // namespace
 
+render_function by_precision(image (*as_float)(const program_options&), image (*as_double)(const program_options&)) {
+    return [=](const program_options& opt, long& rays) {
+        rays = long(opt.width) * long(opt.height);  // one primary ray per pixel
+        return opt.prec == precision::single ? as_float(opt) : as_double(opt);
+    };
+}
+
+render_function by_precision(image (*as_float)(const program_options&, long&),
+                             image (*as_double)(const program_options&, long&)) {
+    return [=](const program_options& opt, long& rays) {
+        return opt.prec == precision::single ? as_float(opt, rays) : as_double(opt, rays);
+    };
+}
+
 int run_chapter_program(int argc, char** argv, const chapter_program& program) {
     program_options opt;
     opt.out = "out/" + program.id + ".png";

@@ -38,15 +38,25 @@ struct program_options {
     scene_description scene;
 };
 
+// How a chapter draws its picture; rays_traced is how many rays it cast in
+// all (primary and, in later chapters, shadow rays), for the rays/s figure.
+using render_function = std::function<image(const program_options&, long& rays_traced)>;
+
+// The usual render_function: the chapter's drawing code instantiated in both
+// precisions, picked by --precision. The first form counts one ray per pixel;
+// the second counts its own rays (shadow rays as well).
+//   program.render = rt::by_precision(render_scene<float>, render_scene<double>);
+render_function by_precision(image (*as_float)(const program_options&), image (*as_double)(const program_options&));
+render_function by_precision(image (*as_float)(const program_options&, long&),
+                             image (*as_double)(const program_options&, long&));
+
 struct chapter_program {
     std::string id;           // "ch01"
     std::string title;        // "unit sphere"
     int default_width = 400;
     int default_height = 300;
     precision default_precision = precision::double_;  // when --precision is not given
-    // Renders the chapter's scene. rays_traced is how many rays it cast in all
-    // (primary and, in later chapters, shadow rays), for the rays/s figure.
-    std::function<image(const program_options&, long& rays_traced)> render;
+    render_function render;  // draws the chapter's picture (usually by_precision(...))
     // Optional: with --error, called after the timed render; returns one line
     // describing the render's error against a higher-precision reference
     // (where a reference exists, the error is part of the report). Not part of the time.

@@ -36,9 +36,6 @@ int main(int argc, char** argv) {
     rt::chapter_program program;
     program.id = "ch01";
     program.title = "unit sphere";
-    program.render = [](const rt::program_options& opt, long& rays) {
-        rays = long(opt.width) * opt.height;
-        return opt.prec == rt::precision::single ? render_unit_sphere<float>(opt) : render_unit_sphere<double>(opt);
-    };
+    program.render = rt::by_precision(render_unit_sphere<float>, render_unit_sphere<double>);
     return rt::run_chapter_program(argc, argv, program);
 }

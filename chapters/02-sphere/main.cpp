@@ -46,9 +46,6 @@ int main(int argc, char** argv) {
     rt::chapter_program program;
     program.id = "ch02";
     program.title = "sphere";
-    program.render = [](const rt::program_options& opt, long& rays) {
-        rays = long(opt.width) * opt.height;
-        return opt.prec == rt::precision::single ? render_sphere<float>(opt) : render_sphere<double>(opt);
-    };
+    program.render = rt::by_precision(render_sphere<float>, render_sphere<double>);
     return rt::run_chapter_program(argc, argv, program);
 }

@@ -45,9 +45,6 @@ int main(int argc, char** argv) {
     program.title = "scene loop";
     program.draws_scene = true;
     program.draws_planes = program.draws_triangles = false;  // chapters 04 and 05
-    program.render = [](const rt::program_options& opt, long& rays) {
-        rays = long(opt.width) * opt.height;
-        return opt.prec == rt::precision::single ? render_scene<float>(opt) : render_scene<double>(opt);
-    };
+    program.render = rt::by_precision(render_scene<float>, render_scene<double>);
     return rt::run_chapter_program(argc, argv, program);
 }

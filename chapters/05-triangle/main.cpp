@@ -64,9 +64,6 @@ int main(int argc, char** argv) {
     program.id = "ch05";
     program.title = "triangle";
     program.draws_scene = true;
-    program.render = [](const rt::program_options& opt, long& rays) {
-        rays = long(opt.width) * opt.height;
-        return opt.prec == rt::precision::single ? render_scene<float>(opt) : render_scene<double>(opt);
-    };
+    program.render = rt::by_precision(render_scene<float>, render_scene<double>);
     return rt::run_chapter_program(argc, argv, program);
 }

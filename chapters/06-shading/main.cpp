@@ -58,8 +58,6 @@ int main(int argc, char** argv) {
     program.id = "ch06";
     program.title = "shading";
     program.draws_scene = true;
-    program.render = [](const rt::program_options& opt, long& rays) {
-        return opt.prec == rt::precision::single ? render_scene<float>(opt, rays) : render_scene<double>(opt, rays);
-    };
+    program.render = rt::by_precision(render_scene<float>, render_scene<double>);  // counts its shadow rays
     return rt::run_chapter_program(argc, argv, program);
 }

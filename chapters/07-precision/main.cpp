@@ -239,10 +239,7 @@ int main(int argc, char** argv) {
     // Float by default (the other chapters default to double): the lecture's
     // failures are float failures. Try --precision double as well.
     program.default_precision = rt::precision::single;
-    program.render = [](const rt::program_options& opt, long& rays) {
-        rays = long(opt.width) * opt.height;
-        return opt.prec == rt::precision::single ? render_panels<float>(opt) : render_panels<double>(opt);
-    };
+    program.render = rt::by_precision(render_panels<float>, render_panels<double>);
     program.error_report = [](const rt::program_options& opt) {
         return opt.prec == rt::precision::single ? error_report<float>(opt) : error_report<double>(opt);
     };
