@@ -77,27 +77,28 @@ public:
         value("", 0);
     }
 
-    // Offset of the value at path (of the whole document when unknown).
-    size_t value_at(const std::string& path) const {
-        auto it = values_.find(path);
-        return it == values_.end() ? 0 : it->second;
+    // The error for the field at path, reported where its value starts (or
+    // its key, for a problem with the key itself) - the one way every error
+    // after the syntax check finds its line and column.
+    [[noreturn]] void fail(const std::string& path, const std::string& problem) const {
+        fail_at(value_at(path), path, problem);
     }
-    size_t key_at(const std::string& path) const {
+    [[noreturn]] void fail_at_key(const std::string& path, const std::string& problem) const {
         auto it = keys_.find(path);
-        return it == keys_.end() ? value_at(path) : it->second;
+        fail_at(it == keys_.end() ? value_at(path) : it->second, path, problem);
     }
+
     // Throws the error for the first number too large for a double, if any.
     void fail_at_overflowing_number() const {
         std::string first;
         for (const auto& [path, at] : values_) {
             const char c = text_[at];
-            if ((c == '-' || (c >= '0' && c <= '9')) && std::isinf(std::strtod(token_at(path, text_.size()).c_str(), nullptr)) &&
+            const bool number = c == '-' || (c >= '0' && c <= '9');
+            if (number && std::isinf(std::strtod(token_at(path, text_.size()).c_str(), nullptr)) &&
                 (first.empty() || at < values_.at(first)))
                 first = path;
         }
-        if (!first.empty())
-            fail(values_.at(first), first,
-                 "expected a finite number, got " + token_at(first) + " (too large even for a double)");
+        if (!first.empty()) fail(first, "expected a finite number, got " + token_at(first) + " (too large even for a double)");
     }
     // The value's text as written, e.g. "1e999" for a number too large
     // (cut at `most` characters).
@@ -116,7 +117,12 @@ private:
     size_t pos_ = 0;
     std::map<std::string, size_t> values_, keys_;
 
-    [[noreturn]] void fail(size_t offset, const std::string& field, const std::string& problem) const {
+    size_t value_at(const std::string& path) const {  // of the whole document when unknown
+        auto it = values_.find(path);
+        return it == values_.end() ? 0 : it->second;
+    }
+
+    [[noreturn]] void fail_at(size_t offset, const std::string& field, const std::string& problem) const {
         auto [line, column] = line_and_column(text_, offset);
         throw scene_error(source_, line, column, field, problem);
     }
@@ -153,7 +159,7 @@ private:
     }
 
     void value(const std::string& path, int depth) {
-        if (depth > max_depth) fail(pos_, path, "nested more than " + std::to_string(max_depth) + " levels deep");
+        if (depth > max_depth) fail_at(pos_, path, "nested more than " + std::to_string(max_depth) + " levels deep");
         values_[path] = pos_;
         char c = peek();
         if (c == '{') {
@@ -165,7 +171,7 @@ private:
                 if (peek() != '"') break;  // cannot happen after nlohmann accepted the text; never loop
                 std::string key = string_token();
                 std::string child = path.empty() ? key : path + "." + key;
-                if (seen[key]) fail(key_pos, child, "this key appears twice in the same object");
+                if (seen[key]) fail_at(key_pos, child, "this key appears twice in the same object");
                 seen[key] = true;
                 keys_[child] = key_pos;
                 skip_space();
@@ -229,7 +235,7 @@ std::string format_vector(const vec3d& v) {
 class reader {
 public:
     reader(const std::string& text, const std::string& source, const json& doc)
-        : text_(text), source_(source), doc_(doc), where_(text, source) {}
+        : source_(source), doc_(doc), where_(text, source) {}
 
     scene_description read() {
         scene_description d;
@@ -237,40 +243,33 @@ public:
         if (!doc_.is_object()) fail("", "expected the scene to be a JSON object { ... }, got " + describe(doc_, ""));
         check_keys(doc_, "", {"description", "camera", "background", "ambient", "materials", "spheres", "planes",
                               "triangles", "meshes", "lights", "generate"});
-        if (auto* j = member(doc_, "", "description"); j && !j->is_string())
+        if (auto* j = member(doc_, "description"); j && !j->is_string())
             fail("description", "expected a string, got " + describe(*j, "description"));
         d.camera = read_camera(required(doc_, "", "camera", "an object describing the camera"), "camera");
-        if (auto* j = member(doc_, "", "background")) d.world.background = read_color(*j, "background");
-        if (auto* j = member(doc_, "", "ambient")) d.world.ambient = read_color(*j, "ambient");
+        if (auto* j = member(doc_, "background")) d.world.background = read_color(*j, "background");
+        if (auto* j = member(doc_, "ambient")) d.world.ambient = read_color(*j, "ambient");
         read_materials(d);
         read_list(d, "spheres", [&](const json& j, const std::string& p) { read_sphere(d, j, p); });
         read_list(d, "planes", [&](const json& j, const std::string& p) { read_plane(d, j, p); });
         read_list(d, "triangles", [&](const json& j, const std::string& p) { read_triangle(d, j, p); });
         read_list(d, "meshes", [&](const json& j, const std::string& p) { read_mesh(d, j, p); });
-        if (auto* g = member(doc_, "", "generate")) read_generate(d, *g);
+        if (auto* g = member(doc_, "generate")) read_generate(d, *g);
         read_list(d, "lights", [&](const json& j, const std::string& p) {
             check_keys(j, p, {"position", "intensity"});
             point_light light;
             light.position = read_point(required(j, p, "position", "a point [x, y, z]"), p + ".position");
-            if (auto* i = member(j, p, "intensity")) light.intensity = read_color(*i, p + ".intensity");
+            if (auto* i = member(j, "intensity")) light.intensity = read_color(*i, p + ".intensity");
             d.world.lights.push_back(light);
         });
         return d;
     }
 
 private:
-    const std::string& text_;
     const std::string& source_;
     const json& doc_;
     locator where_;
 
-    [[noreturn]] void fail_at(size_t offset, const std::string& field, const std::string& problem) const {
-        auto [line, column] = line_and_column(text_, offset);
-        throw scene_error(source_, line, column, field, problem);
-    }
-    [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
-        fail_at(where_.value_at(field), field, problem);
-    }
+    [[noreturn]] void fail(const std::string& field, const std::string& problem) const { where_.fail(field, problem); }
 
     static std::string child(const std::string& path, const std::string& key) {
         return path.empty() ? key : path + "." + key;
@@ -292,14 +291,14 @@ private:
         }
     }
 
-    const json* member(const json& object, const std::string&, const std::string& key) const {
+    static const json* member(const json& object, const std::string& key) {
         auto it = object.find(key);
         return it == object.end() ? nullptr : &*it;
     }
 
     const json& required(const json& object, const std::string& path, const std::string& key,
                          const std::string& what) const {
-        if (auto* j = member(object, path, key)) return *j;
+        if (auto* j = member(object, key)) return *j;
         fail(path, "missing field \"" + key + "\" (" + what + ")");
     }
 
@@ -315,7 +314,7 @@ private:
             if (!best.empty()) problem += " (did you mean \"" + best + "\"?)";
             problem += "; the keys allowed here are: " + join(allowed);
             std::string field = child(path, it.key());
-            fail_at(where_.key_at(field), field, problem);
+            where_.fail_at_key(field, problem);
         }
     }
 
@@ -387,32 +386,32 @@ private:
     camera_description read_camera(const json& j, const std::string& path) const {
         check_keys(j, path, {"type", "eye", "look_at", "up", "fov", "view_height", "width", "height"});
         camera_description c;
-        if (auto* t = member(j, path, "type")) {
+        if (auto* t = member(j, "type")) {
             std::string p = path + ".type";
             if (!t->is_string() || (*t != "pinhole" && *t != "orthographic"))
                 fail(p, "expected \"pinhole\" or \"orthographic\", got " + describe(*t, p));
             c.type = *t == "pinhole" ? camera_description::kind::pinhole : camera_description::kind::orthographic;
         }
         bool pinhole = c.type == camera_description::kind::pinhole;
-        if (pinhole && member(j, path, "view_height"))
-            fail_at(where_.key_at(path + ".view_height"), path + ".view_height",
-                    "view_height belongs to an orthographic camera; a pinhole camera uses fov");
-        if (!pinhole && member(j, path, "fov"))
-            fail_at(where_.key_at(path + ".fov"), path + ".fov",
-                    "fov belongs to a pinhole camera; an orthographic camera uses view_height");
+        if (pinhole && member(j, "view_height"))
+            where_.fail_at_key(path + ".view_height",
+                               "view_height belongs to an orthographic camera; a pinhole camera uses fov");
+        if (!pinhole && member(j, "fov"))
+            where_.fail_at_key(path + ".fov",
+                               "fov belongs to a pinhole camera; an orthographic camera uses view_height");
         c.eye = read_point(required(j, path, "eye", "the camera position [x, y, z]"), path + ".eye");
         c.look_at = read_point(required(j, path, "look_at", "the point the camera looks at [x, y, z]"),
                                path + ".look_at");
-        if (auto* u = member(j, path, "up")) c.up = read_direction(*u, path + ".up");
-        if (auto* f = member(j, path, "fov"))
+        if (auto* u = member(j, "up")) c.up = read_direction(*u, path + ".up");
+        if (auto* f = member(j, "fov"))
             c.fov_degrees = read_number_in(*f, path + ".fov", 0, true, 179.999,
                                            "a vertical field of view in degrees, between 0 and 180");
-        if (auto* h = member(j, path, "view_height"))
+        if (auto* h = member(j, "view_height"))
             c.view_height = read_number_in(*h, path + ".view_height", 0, true, max_coordinate,
                                            "a view height > 0");
-        if (auto* w = member(j, path, "width"))
+        if (auto* w = member(j, "width"))
             c.width = int(read_integer(*w, path + ".width", 1, max_image_side, "a whole number of pixels from 1 to 16384"));
-        if (auto* h = member(j, path, "height"))
+        if (auto* h = member(j, "height"))
             c.height =
                 int(read_integer(*h, path + ".height", 1, max_image_side, "a whole number of pixels from 1 to 16384"));
 
@@ -424,7 +423,7 @@ private:
             fail(path + ".look_at", "the camera looks at its own position " + format_vector(c.eye) +
                                         ": eye and look_at must be different points");
         if (!(length(cross(normalize(convert<float>(c.up)), convert<float>(normalize(back)))) > 1e-6f))
-            fail(member(j, path, "up") ? path + ".up" : path,
+            fail(member(j, "up") ? path + ".up" : path,
                  "the up vector " + format_vector(c.up) +
                      " is parallel to the view direction (eye to look_at); choose an up vector across it");
         // Whatever the checks above miss, the cameras themselves find: build
@@ -439,11 +438,11 @@ private:
     template <class T>
     void check_camera_builds(const camera_description& c, const json& j, const std::string& path,
                              const char* precision) const {
-        std::string field = member(j, path, "up") ? path + ".up" : path + ".look_at";
+        std::string field = member(j, "up") ? path + ".up" : path + ".look_at";
         try {
             camera_frame<T>::look_at(convert<T>(c.eye), convert<T>(c.look_at), convert<T>(c.up));
             const char* size = c.type == camera_description::kind::pinhole ? "fov" : "view_height";
-            field = member(j, path, size) ? path + "." + size : path;
+            field = member(j, size) ? path + "." + size : path;
             scene_camera<T> built(c);
         } catch (const std::invalid_argument& e) {
             std::string problem = e.what();
@@ -453,7 +452,7 @@ private:
     }
 
     void read_materials(scene_description& d) const {
-        const json* list = member(doc_, "", "materials");
+        const json* list = member(doc_, "materials");
         if (!list) {
             d.world.materials.push_back(material{});  // one default grey material for every shape
             d.material_names.push_back("");
@@ -468,17 +467,17 @@ private:
             check_keys(j, p, {"name", "diffuse", "specular", "shininess", "checker"});
             material m;
             std::string name;
-            if (auto* n = member(j, p, "name")) {
+            if (auto* n = member(j, "name")) {
                 if (!n->is_string()) fail(p + ".name", "expected a string, got " + describe(*n, p + ".name"));
                 name = n->get<std::string>();
                 if (std::find(d.material_names.begin(), d.material_names.end(), name) != d.material_names.end())
                     fail(p + ".name", "two materials are named \"" + name + "\"; names must be unique");
             }
-            if (auto* c = member(j, p, "diffuse")) m.diffuse = read_color(*c, p + ".diffuse");
-            if (auto* c = member(j, p, "specular")) m.specular = read_color(*c, p + ".specular");
-            if (auto* s = member(j, p, "shininess"))
+            if (auto* c = member(j, "diffuse")) m.diffuse = read_color(*c, p + ".diffuse");
+            if (auto* c = member(j, "specular")) m.specular = read_color(*c, p + ".specular");
+            if (auto* s = member(j, "shininess"))
                 m.shininess = float(read_number_in(*s, p + ".shininess", 0, false, 10000, "a number from 0 to 10000"));
-            if (auto* c = member(j, p, "checker")) {
+            if (auto* c = member(j, "checker")) {
                 m.checker = true;
                 m.checker_color = read_color(*c, p + ".checker");
             }
@@ -488,7 +487,7 @@ private:
     }
 
     int read_material_ref(const scene_description& d, const json& object, const std::string& path) const {
-        const json* j = member(object, path, "material");
+        const json* j = member(object, "material");
         if (!j) return 0;
         std::string p = path + ".material";
         int count = int(d.world.materials.size());
@@ -510,7 +509,7 @@ private:
 
     template <class F>
     void read_list(scene_description& d, const std::string& key, F&& read_one) const {
-        const json* list = member(doc_, "", key);
+        const json* list = member(doc_, key);
         if (!list) return;
         if (!list->is_array()) fail(key, "expected an array [ {...}, ... ], got " + describe(*list, key));
         for (size_t i = 0; i < list->size(); ++i) read_one((*list)[i], key + "[" + std::to_string(i) + "]");
@@ -576,7 +575,7 @@ private:
 
     void read_mesh(scene_description& d, const json& j, const std::string& p) const {
         check_keys(j, p, {"vertices", "faces", "material", "obj"});
-        if (auto* obj = member(j, p, "obj")) return read_obj(d, j, *obj, p);
+        if (auto* obj = member(j, "obj")) return read_obj(d, j, *obj, p);
         const json& vs = required(j, p, "vertices", "an array of points [[x, y, z], ...]");
         if (!vs.is_array() || vs.empty())
             fail(p + ".vertices", "expected a non-empty array of points [[x, y, z], ...], got " +
@@ -610,7 +609,7 @@ private:
     // {"obj": "bunny.obj"}: a path relative to the scene file's folder.
     void read_obj(scene_description& d, const json& j, const json& obj, const std::string& p) const {
         if (!obj.is_string()) fail(p + ".obj", "expected the path of an OBJ file, got " + describe(obj, p + ".obj"));
-        if (member(j, p, "vertices") || member(j, p, "faces"))
+        if (member(j, "vertices") || member(j, "faces"))
             fail(p + ".obj", "a mesh is either an OBJ file or vertices and faces, not both");
         std::filesystem::path file = std::filesystem::path(source_).parent_path() / obj.get<std::string>();
         int material = read_material_ref(d, j, p);
