@@ -13,7 +13,6 @@ namespace rt {
 class stopwatch {
 public:
     stopwatch() : start_(clock::now()) {}
-    void restart() { start_ = clock::now(); }
     double seconds() const { return std::chrono::duration<double>(clock::now() - start_).count(); }
     double nanoseconds() const { return std::chrono::duration<double, std::nano>(clock::now() - start_).count(); }
 
@@ -37,24 +36,6 @@ inline timing_summary summarize(std::vector<double> samples) {
     size_t n = samples.size();
     s.median = n % 2 ? samples[n / 2] : 0.5 * (samples[n / 2 - 1] + samples[n / 2]);
     return s;
-}
-
-// Nanoseconds per call of f(i) for i in [0, count), over `runs` runs.
-// f should return something that depends on its work, which is kept in a
-// volatile sink so the compiler cannot drop the loop.
-template <class F>
-timing_summary time_per_call(size_t count, int runs, F&& f) {
-    std::vector<double> samples;
-    volatile double sink = 0;
-    for (int r = 0; r < runs; ++r) {
-        double acc = 0;
-        stopwatch sw;
-        for (size_t i = 0; i < count; ++i) acc += static_cast<double>(f(i));
-        samples.push_back(sw.nanoseconds() / double(count ? count : 1));
-        sink = sink + acc;
-    }
-    (void)sink;
-    return summarize(std::move(samples));
 }
 
 }  // namespace rt

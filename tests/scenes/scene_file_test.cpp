@@ -103,7 +103,7 @@ TEST_CASE("convert_scene keeps every object and material in float") {
         R"(, "spheres": [{"center": [1,2,3], "radius": 0.5}], "planes": [{"point": [0,0,0], "normal": [0,1,0]}]})", "t.json");
     scene<float> f = convert_scene<float>(d.world);
     CHECK(f.spheres.size() == 1);
-    CHECK(f.spheres[0].center == vec3f(1, 2, 3));
+    CHECK(f.spheres[0].center == vec3<float>(1, 2, 3));
     CHECK(f.planes.size() == 1);
     CHECK(f.object_count() == 2);
 }
