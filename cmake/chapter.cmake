@@ -20,10 +20,15 @@
 #                                  tests/fixtures/wrong/chNN/BUG/ fails the hidden tests it names
 #
 # A wrong-implementation fixture is a folder tests/fixtures/wrong/chNN/BUG/ holding
-#   - one or more of the chapter's exercise files, with the bug in them
-#     (exercise files it does not hold are taken from solutions/), and
+#   - bug.patch: the bug and nothing else, as a unified diff against the
+#     chapter's solution files (`diff -u` or `git diff` form, paths
+#     a/solutions/NN-name/FILE and b/solutions/NN-name/FILE; text before the
+#     first `---` line describes the bug). It is applied at build time
+#     (cmake/apply_fixture_patch.cmake), with no fuzz, to a copy of the
+#     current solution, so a fixture cannot drift away from it unnoticed.
 #   - expect_fail.txt: one hidden test-case name per line (doctest wildcards
-#     allowed, '#' starts a comment) that the bug must fail.
+#     allowed, '#' starts a comment) that the bug must fail; every other
+#     hidden test case must pass (cmake/expect_wrong_caught.cmake).
 
 option(RT_DISCOVER_TESTS "register one ctest test per doctest case (runs each test executable once at build time)" ON)
 set(RT_STUB_CHECK_SCRIPT "${CMAKE_CURRENT_LIST_DIR}/expect_polite_failure.cmake")
@@ -40,7 +45,7 @@ endfunction()
 # Links the hidden tests of chapter `id` against a wrong implementation and
 # checks that the hidden tests catch it.
 function(rt_wrong_fixtures id chapter_dir solution_dir exercises dependency_solution_libs)
-  file(GLOB fixture_dirs LIST_DIRECTORIES true "${PROJECT_SOURCE_DIR}/tests/fixtures/wrong/${id}/*")
+  file(GLOB fixture_dirs LIST_DIRECTORIES true CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/tests/fixtures/wrong/${id}/*")
   if(NOT fixture_dirs OR NOT TARGET ${id}_hidden_tests)
     return()
   endif()
@@ -49,36 +54,73 @@ function(rt_wrong_fixtures id chapter_dir solution_dir exercises dependency_solu
   add_library(${id}_hidden_objects OBJECT ${hidden_sources})
   target_include_directories(${id}_hidden_objects PRIVATE "$<TARGET_PROPERTY:${id}_student,INTERFACE_INCLUDE_DIRECTORIES>")
   target_link_libraries(${id}_hidden_objects PRIVATE rt_test_support)
+  file(RELATIVE_PATH solution_rel "${PROJECT_SOURCE_DIR}" "${solution_dir}")
   foreach(dir IN LISTS fixture_dirs)
     if(NOT IS_DIRECTORY "${dir}")
       continue()
     endif()
     get_filename_component(bug "${dir}" NAME)
+    set(problem "")
     if(NOT EXISTS "${dir}/expect_fail.txt")
+      set(problem "needs expect_fail.txt (the hidden tests it must fail)")
+    elseif(NOT EXISTS "${dir}/bug.patch")
+      set(problem "needs bug.patch (the bug, as a diff against ${solution_rel})")
+    endif()
+    if(problem)
       # Not fatal, so one unfinished fixture does not stop everybody's build;
       # the fixture's own test fails and says why.
-      message(WARNING "${dir}: a wrong-implementation fixture needs expect_fail.txt (the hidden tests it must fail)")
-      add_test(NAME ${id}.wrong.${bug} COMMAND ${CMAKE_COMMAND} -E echo "${dir} has no expect_fail.txt")
+      message(WARNING "${dir}: a wrong-implementation fixture ${problem}")
+      add_test(NAME ${id}.wrong.${bug} COMMAND ${CMAKE_COMMAND} -E echo "${dir} ${problem}")
       set_tests_properties(${id}.wrong.${bug} PROPERTIES LABELS "${id};wrong" WILL_FAIL TRUE)
       continue()
     endif()
+    # The patched copies live in the build folder; the exercise files the
+    # patch does not touch are compiled from solutions/ as they are.
+    set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${dir}/bug.patch")
+    file(STRINGS "${dir}/bug.patch" patched_lines REGEX "^\\+\\+\\+ b/")
+    set(out "${PROJECT_BINARY_DIR}/wrong_src/${id}/${bug}")
     set(sources "")
+    set(patched "")
+    set(patched_outputs "")
     foreach(f IN LISTS exercises)
-      if(EXISTS "${dir}/${f}")
-        list(APPEND sources "${dir}/${f}")
+      set(rel "${solution_rel}/${f}")
+      string(REGEX MATCH "\\+\\+\\+ b/${rel}([\t ;]|$)" touched "${patched_lines}")
+      if(touched)
+        list(APPEND patched "${rel}")
+        list(APPEND patched_outputs "${out}/${rel}")
+        list(APPEND sources "${out}/${rel}")
       else()
         list(APPEND sources "${solution_dir}/${f}")
       endif()
     endforeach()
+    set(status "${out}/patch-status.txt")
+    if(NOT patched)
+      set(problem "bug.patch touches none of this chapter's exercise files (${exercises})")
+      message(WARNING "${dir}: ${problem}")
+      add_test(NAME ${id}.wrong.${bug} COMMAND ${CMAKE_COMMAND} -E echo "${dir}: ${problem}")
+      set_tests_properties(${id}.wrong.${bug} PROPERTIES LABELS "${id};wrong" WILL_FAIL TRUE)
+      continue()
+    endif()
+    set(solution_inputs "")
+    foreach(rel IN LISTS patched)
+      list(APPEND solution_inputs "${PROJECT_SOURCE_DIR}/${rel}")
+    endforeach()
+    add_custom_command(OUTPUT ${patched_outputs} "${status}"
+                       COMMAND ${CMAKE_COMMAND} -DPATCH=${dir}/bug.patch -DSOURCE_ROOT=${PROJECT_SOURCE_DIR}
+                               -DOUT=${out} "-DFILES=${patched}" -DSTATUS=${status}
+                               -P "${PROJECT_SOURCE_DIR}/cmake/apply_fixture_patch.cmake"
+                       DEPENDS "${dir}/bug.patch" ${solution_inputs} "${PROJECT_SOURCE_DIR}/cmake/apply_fixture_patch.cmake"
+                       COMMENT "Applying the wrong-implementation fixture ${id}/${bug}"
+                       VERBATIM)
     set(target ${id}_wrong_${bug})
     string(MAKE_C_IDENTIFIER "${target}" target)
     add_executable(${target} ${sources})
-    target_include_directories(${target} PRIVATE "${chapter_dir}")
+    target_include_directories(${target} PRIVATE "${chapter_dir}" "${solution_dir}")
     target_link_libraries(${target} PRIVATE ${id}_hidden_objects rt_test_support rt_common ${dependency_solution_libs})
     set_target_properties(${target} PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/wrong")
     add_test(NAME ${id}.wrong.${bug}
              COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:${target}> -DEXPECT_FILE=${dir}/expect_fail.txt
-                     -P "${PROJECT_SOURCE_DIR}/cmake/expect_wrong_caught.cmake")
+                     -DSTATUS_FILE=${status} -P "${PROJECT_SOURCE_DIR}/cmake/expect_wrong_caught.cmake")
     set_tests_properties(${id}.wrong.${bug} PROPERTIES LABELS "${id};wrong" TIMEOUT 120)
   endforeach()
 endfunction()
