@@ -1,12 +1,20 @@
 """The student-kit exporter and the Gradescope bundle (see tools/grader/README.md).
 
 The kit is built from an allow-list: only what a student needs is copied,
-so a new private folder never leaks by accident. Every export then runs a
-leak check that compares the kit with the private files (solutions/,
-tests/hidden/, tests/fixtures/) and fails the export on any match.
+so a new private folder never leaks by accident. READMEs lose their
+instructor-only passages and CMakePresets.json keeps only the student preset.
+Every export then checks the written kit twice, and fails naming the file:
+every file must be on the list of what may ship (KIT_SHIP: chapter stubs and
+programs as the chapters' CMakeLists.txt name them, headers, READMEs,
+pictures, common/, public tests, scenes, build files, the grader), and the
+leak check compares the kit with the private files (solutions/, tests/hidden/,
+tests/fixtures/). That nothing in the kit computes an answer when the
+chapters are stubs (the semantic check) needs a build of the kit: it is in
+tests/tools/export_tests.py.
 """
 
 import fnmatch
+import glob
 import json
 import os
 import re
@@ -17,56 +25,60 @@ import zipfile
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 
 # What a kit holds: files or folders relative to the repository (missing ones are skipped).
+# tools/render, tools/bench and tools/study stay out: the renderer's fast path
+# and the study compute the exercises' answers (sphere, plane, triangle, robust
+# sphere) with their own code, and the benchmark needs them.
 KIT_ALLOW = [
-    "CMakeLists.txt", "CMakePresets.json", ".gitignore",
+    "CMakeLists.txt", "CMakePresets.json",
     "cmake", "common", "chapters", "scenes",
     "tests/CMakeLists.txt", "tests/support", "tests/public", "tests/common", "tests/scenes",
-    "tools/CMakeLists.txt", "tools/imgcmp.cpp", "tools/setup", "tools/debian-packages.txt", "tools/render",
+    "tools/CMakeLists.txt", "tools/imgcmp.cpp", "tools/setup", "tools/debian-packages.txt",
     "tools/grader",
 ]
 # Never in a kit, even inside an allowed folder.
-KIT_DENY = ["*/__pycache__/*", "*.pyc", "*/.DS_Store"]
+KIT_DENY = ["*/__pycache__/*", "*.pyc", "*/.DS_Store",
+            "/tests/scenes/scene_plan_test.cpp",    # tests tools/render, which is not in the kit
+            "/tools/grader/README.md"]              # the instructor's manual: the kit's README says how to preview
 PRIVATE = ["solutions", "tests/hidden", "tests/fixtures"]
+
+# What may ship, by kind: every file of a written kit must match one of these
+# patterns ('*' stays inside one folder, '**' crosses folders, NN is a
+# chapter number), or the export fails naming the file. A chapter's .cpp
+# files may ship only when its CMakeLists.txt names them as EXERCISES (the
+# stubs) or PROGRAM (the chapter program, which runs the student's code), or
+# when they are listed under "programs" here.
+CHAPTER = "chapters/NN-*/"
+KIT_SHIP = {
+    "build files": ["CMakeLists.txt", "CMakePresets.json", ".gitignore", "cmake/*.cmake",
+                    "common/CMakeLists.txt", CHAPTER + "CMakeLists.txt", "tests/CMakeLists.txt",
+                    "tests/common/CMakeLists.txt", "tests/scenes/CMakeLists.txt", "tools/CMakeLists.txt"],
+    "READMEs": ["README.md", CHAPTER + "README.md", "scenes/README.md"],
+    "chapter headers": [CHAPTER + "*.hpp"],
+    # A measurement that runs the student's chapter 02 code (README, "Shadow acne").
+    "programs": ["chapters/06-shading/acne_study.cpp"],
+    "pictures": [CHAPTER + "**.png", CHAPTER + "**.svg", "tests/common/data/*.png"],
+    "common/": ["common/*.hpp", "common/*.cpp"],
+    "public tests": ["tests/public/chNN_*.cpp", "tests/public/chNN_*.hpp", "tests/manifest.json",
+                     "tests/support/**.hpp", "tests/support/**.cpp", "tests/common/*.cpp",
+                     "tests/scenes/*_test.cpp", "tests/scenes/*.cmake", "tests/scenes/broken/*.json"],
+    "scenes": ["scenes/*.json", "scenes/*.obj"],
+    "student tools": ["tools/imgcmp.cpp", "tools/setup", "tools/debian-packages.txt"],
+    "the grader (for previews)": ["tools/grader/**"],
+}
+# The kit's own files, written by the exporter from these templates.
+TEMPLATES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "templates")
+# Passages of a README that only work in the instructor's repository (they
+# name solutions/, the dev preset, tools that stay out): the kit's copy drops
+# everything from the opening marker line to the closing one.
+INSTRUCTOR_ONLY = ("<!-- instructor-only -->", "<!-- /instructor-only -->")
+# The presets a kit keeps (and the hidden ones they inherit): the others build
+# the solutions, which the kit does not have.
+KIT_PRESETS = ["student"]
 # Text that a stub or a public test shares with a solution or a hidden test
 # legitimately (the same header, the same explicit instantiation lines...).
 SHARED_SOURCES = ["chapters", "tests/public", "tests/support"]
 MIN_DISTINCTIVE = 24    # characters: shorter lines ("return std::nullopt;") prove nothing
 LEAK_RUN = 3            # consecutive private lines that make a leak
-
-STUDENT_README = """# {title}: student kit
-
-This folder is your copy of the course: the chapters (lecture, exercise
-stubs, programs, reference pictures), the shared core in `common/`, the
-public tests and the scenes. It builds on its own.
-
-## Start
-
-```sh
-tools/setup                                  # installs the Debian packages (once)
-cmake --preset student                       # configure (RT_SIDE=student: your code)
-cmake --build --preset student --target ch01 ch01_public_tests
-ctest --preset student -L ch01               # chapter 01's public tests
-build/student/bin/ch01-unit-sphere --out out/ch01.png --compare chapters/01-unit-sphere/reference.png
-```
-
-Each chapter's `README.md` is its lecture and tells you which file to fill in
-(`chapters/NN-name/*.cpp`). Until you do, the tests fail politely with
-"not implemented yet".
-
-## Preview your score
-
-The course's grader runs here too, on the public tests and the pictures
-(the hidden tests are only on the instructor's side):
-
-```sh
-tools/grader/grade . --out preview.json            # every chapter
-tools/grader/grade . --out preview.json --chapters 01
-```
-
-It prints one line per chapter and writes `preview.json` (the same format
-as the real grading). Submit only your exercise files: tests, headers and
-build files always come from the instructor's copy.
-"""
 
 
 def _walk(root, rel):
@@ -81,6 +93,7 @@ def _walk(root, rel):
 
 
 def kit_files(repo):
+    """The repository files the kit copies (before the ship check)."""
     files = []
     for rel in KIT_ALLOW:
         if not os.path.exists(os.path.join(repo, rel)):
@@ -94,6 +107,109 @@ def kit_files(repo):
     return files
 
 
+def _pattern_re(pattern):
+    out = ""
+    i = 0
+    while i < len(pattern):
+        if pattern.startswith("**", i):
+            out += ".*"
+            i += 2
+        elif pattern.startswith("NN", i):
+            out += "[0-9][0-9]"
+            i += 2
+        elif pattern[i] == "*":
+            out += "[^/]*"
+            i += 1
+        else:
+            out += re.escape(pattern[i])
+            i += 1
+    return re.compile(out + r"\Z")
+
+
+def _chapter_sources(kit):
+    """chapters/NN-name/FILE for every EXERCISES and PROGRAM file a chapter's CMakeLists.txt names."""
+    allowed = {}
+    for cmake in sorted(glob.glob(os.path.join(kit, "chapters", "[0-9][0-9]-*", "CMakeLists.txt"))):
+        folder = os.path.relpath(os.path.dirname(cmake), kit)
+        with open(cmake) as f:
+            text = re.sub(r"#[^\n]*", "", f.read())
+        for call in re.findall(r"rt_chapter\s*\((.*?)\)", text, re.S):
+            words = re.findall(r'"[^"]*"|\S+', call)
+            kind = None
+            for w in words:
+                if w in ("EXERCISES", "PROGRAM"):
+                    kind = "chapter exercises (stubs)" if w == "EXERCISES" else "chapter programs"
+                elif w in ("TITLE", "DEPENDS"):
+                    kind = None
+                elif kind:
+                    allowed[f"{folder}/{w}"] = kind
+    return allowed
+
+
+def ship_check(kit):
+    """Files of the written kit that are on no list of what may ship, as problems naming them."""
+    patterns = [(kind, _pattern_re(p)) for kind, ps in KIT_SHIP.items() for p in ps]
+    chapter_sources = _chapter_sources(kit)
+    problems = []
+    for dirpath, dirnames, filenames in os.walk(kit):
+        dirnames[:] = sorted(d for d in dirnames if not (dirpath == kit and d in ("build", "out", "renders")))
+        for name in sorted(filenames):
+            rel = os.path.relpath(os.path.join(dirpath, name), kit).replace(os.sep, "/")
+            if rel in chapter_sources or any(r.match(rel) for _, r in patterns):
+                continue
+            problems.append(f"not on the list of what may ship: {rel}")
+    return problems
+
+
+def strip_instructor_only(text, where):
+    """text without its instructor-only passages; an unbalanced marker is an error naming the line."""
+    kept, inside = [], None
+    for number, line in enumerate(text.splitlines(keepends=True), 1):
+        marker = line.strip()
+        if marker == INSTRUCTOR_ONLY[0]:
+            if inside:
+                raise SystemExit(f"kit: {where}:{number}: instructor-only passage opened twice (line {inside})")
+            inside = number
+        elif marker == INSTRUCTOR_ONLY[1]:
+            if not inside:
+                raise SystemExit(f"kit: {where}:{number}: {INSTRUCTOR_ONLY[1]} without an opening marker")
+            inside = None
+        elif not inside:
+            kept.append(line)
+    if inside:
+        raise SystemExit(f"kit: {where}:{inside}: instructor-only passage never closed")
+    return re.sub(r"\n{3,}", "\n\n", "".join(kept))
+
+
+def kit_presets(text):
+    """CMakePresets.json with only the presets that build in a kit (and the hidden ones they inherit)."""
+    data = json.loads(text)
+    for kind in ("configurePresets", "buildPresets", "testPresets"):
+        presets = {p["name"]: p for p in data.get(kind, [])}
+        keep, todo = set(), [n for n in KIT_PRESETS if n in presets]
+        while todo:
+            name = todo.pop()
+            if name in keep:
+                continue
+            keep.add(name)
+            inherits = presets[name].get("inherits", [])
+            todo += [inherits] if isinstance(inherits, str) else list(inherits)
+        data[kind] = [p for p in data.get(kind, []) if p["name"] in keep]
+    return json.dumps(data, indent=2) + "\n"
+
+
+def _copy(repo, rel, dst):
+    src = os.path.join(repo, rel)
+    if rel == "CMakePresets.json":
+        with open(src) as f, open(dst, "w") as g:
+            g.write(kit_presets(f.read()))
+    elif rel.endswith(".md"):
+        with open(src) as f, open(dst, "w") as g:
+            g.write(strip_instructor_only(f.read(), rel))
+    else:
+        shutil.copy2(src, dst)
+
+
 def export_kit(out, repo=REPO, log=print):
     """Writes the student kit into out (which must not exist or be empty); returns the file count."""
     if os.path.exists(out) and os.listdir(out):
@@ -102,7 +218,7 @@ def export_kit(out, repo=REPO, log=print):
     for rel in files:
         dst = os.path.join(out, rel)
         os.makedirs(os.path.dirname(dst), exist_ok=True)
-        shutil.copy2(os.path.join(repo, rel), dst)
+        _copy(repo, rel, dst)
     # The public part of the grading manifest, for the score preview.
     manifest_path = os.path.join(repo, "tests", "manifest.json")
     if os.path.exists(manifest_path):
@@ -113,13 +229,14 @@ def export_kit(out, repo=REPO, log=print):
             json.dump({"comment": "Points of the public tests and pictures (the preview's share of the grade).",
                        "tests": public}, f, indent=1)
             f.write("\n")
-    with open(os.path.join(out, "README.md"), "w") as f:
-        f.write(STUDENT_README.format(title="A ray tracer, chapter by chapter"))
-    problems = leak_check(out, repo)
+    for template, name in (("README.md", "README.md"), ("gitignore", ".gitignore")):
+        shutil.copyfile(os.path.join(TEMPLATES, template), os.path.join(out, name))
+    problems = ship_check(out) + leak_check(out, repo)
     if problems:
         raise SystemExit("kit: LEAK CHECK FAILED, the kit is not safe to hand out:\n" + "\n".join(problems[:50]))
-    log(f"kit: {len(files) + 2} files written to {out}; leak check passed")
-    return len(files) + 2
+    count = sum(len(names) for _, _, names in os.walk(out))
+    log(f"kit: {count} files written to {out}; every file is on the list of what may ship; leak check passed")
+    return count
 
 
 def _text_lines(path):
