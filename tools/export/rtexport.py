@@ -50,7 +50,7 @@ PRIVATE = ["solutions", "tests/hidden", "tests/fixtures"]
 CHAPTER = "chapters/NN-*/"
 KIT_SHIP = {
     "build files": ["CMakeLists.txt", "CMakePresets.json", ".gitignore", "cmake/*.cmake",
-                    "common/CMakeLists.txt", "common/*.cmake", CHAPTER + "CMakeLists.txt", "tests/CMakeLists.txt",
+                    "common/CMakeLists.txt", "common/*.cmake", CHAPTER + "CMakeLists.txt", CHAPTER + "*.cmake", "tests/CMakeLists.txt",
                     "tests/common/CMakeLists.txt", "tests/scenes/CMakeLists.txt", "tools/CMakeLists.txt"],
     "READMEs": ["README.md", CHAPTER + "README.md", "scenes/README.md"],
     "chapter headers": [CHAPTER + "*.hpp"],
