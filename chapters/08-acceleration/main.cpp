@@ -170,8 +170,6 @@ int main(int argc, char** argv) {
     program.id = "ch08";
     program.title = "acceleration";
     program.draws_scene = true;
-    program.render = [](const rt::program_options& opt, long& rays) {
-        return opt.prec == rt::precision::single ? render_scene<float>(opt, rays) : render_scene<double>(opt, rays);
-    };
+    program.render = rt::by_precision(render_scene<float>, render_scene<double>);
     return rt::run_chapter_program(argc, argv, program);
 }

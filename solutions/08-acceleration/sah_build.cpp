@@ -27,7 +27,13 @@ struct split_choice {
 template <class T>
 class sah_builder {
 public:
-    sah_builder(const std::vector<aabb<T>>& boxes, const build_options& options) : boxes_(boxes), options_(options) {}
+    sah_builder(const std::vector<aabb<T>>& boxes, const build_options& options)
+        : boxes_(boxes), options_(options), bins_(size_t(options.bins)), right_area_(size_t(options.bins)),
+          right_count_(size_t(options.bins)) {
+        // Each box's centre, computed once: the builder looks at it on every level.
+        centres_.reserve(boxes.size());
+        for (const aabb<T>& b : boxes) centres_.push_back(b.centroid());
+    }
 
     bvh<T> build() {
         const int n = int(boxes_.size());
@@ -61,25 +67,28 @@ private:
 
     const aabb<T>& box_of(int position) const { return boxes_[size_t(tree_.order[size_t(position)])]; }
 
+    // The bin of a centre coordinate. (centre - lo) / extent is in [0, 1]
+    // for every extent > 0, even a tiny one (bins / extent could overflow).
     int bin_of(T centre, T lo, T extent) const {
-        const int bins = options_.bins;
-        const int b = int(T(bins) * ((centre - lo) / extent));
-        return std::min(bins - 1, std::max(0, b));
+        const int b = int(T(options_.bins) * ((centre - lo) / extent));
+        return std::min(options_.bins - 1, std::max(0, b));
     }
 
+    const vec3<T>& centre_of(int position) const { return centres_[size_t(tree_.order[size_t(position)])]; }
+
     // The cheapest binned split of the node's objects, over the three axes.
-    split_choice<T> best_split(const bvh_node<T>& node, const aabb<T>& centres) const {
+    split_choice<T> best_split(const bvh_node<T>& node, const aabb<T>& centres) {
         split_choice<T> best;
         const int bins = options_.bins;
-        std::vector<bin<T>> b(static_cast<size_t>(bins));
-        std::vector<T> right_area(static_cast<size_t>(bins));
-        std::vector<int> right_count(static_cast<size_t>(bins));
+        std::vector<bin<T>>& b = bins_;
+        std::vector<T>& right_area = right_area_;
+        std::vector<int>& right_count = right_count_;
         for (int axis = 0; axis < 3; ++axis) {
             const T lo = centres.lo[axis], extent = centres.hi[axis] - centres.lo[axis];
             if (!(extent > T(0))) continue;  // every centre in one plane: nothing to cut along this axis
             std::fill(b.begin(), b.end(), bin<T>{});
             for (int k = node.first; k < node.first + node.count; ++k) {
-                bin<T>& into = b[size_t(bin_of(box_of(k).centroid()[axis], lo, extent))];
+                bin<T>& into = b[size_t(bin_of(centre_of(k)[axis], lo, extent))];
                 into.box.grow(box_of(k));
                 ++into.count;
             }
@@ -113,7 +122,7 @@ private:
         const bvh_node<T> node = tree_.nodes[size_t(index)];
         if (node.count <= 1) return false;
         aabb<T> centres;
-        for (int k = node.first; k < node.first + node.count; ++k) centres.grow(box_of(k).centroid());
+        for (int k = node.first; k < node.first + node.count; ++k) centres.grow(centre_of(k));
 
         const split_choice<T> choice = best_split(node, centres);
         const T leaf_cost = sah_intersection_cost<T> * T(node.count) * node.box.half_area();
@@ -126,7 +135,7 @@ private:
             const int axis = choice.axis;
             const T lo = centres.lo[axis], extent = centres.hi[axis] - centres.lo[axis];
             const auto middle = std::partition(begin, end, [&](int object) {
-                return bin_of(boxes_[size_t(object)].centroid()[axis], lo, extent) <= choice.plane;
+                return bin_of(centres_[size_t(object)][axis], lo, extent) <= choice.plane;
             });
             left_count = int(middle - begin);
         }
@@ -140,6 +149,11 @@ private:
 
     const std::vector<aabb<T>>& boxes_;
     build_options options_;
+    std::vector<vec3<T>> centres_;
+    // Scratch space of best_split, allocated once for the whole build.
+    std::vector<bin<T>> bins_;
+    std::vector<T> right_area_;
+    std::vector<int> right_count_;
     bvh<T> tree_;
 };
 
