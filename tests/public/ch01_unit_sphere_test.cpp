@@ -119,7 +119,8 @@ TEST_CASE_TEMPLATE("perspective rays only see what is beyond the image plane (t 
     ray<T> r{{0, 0, T(1.5)}, {0, 0, -1}};
     auto t = intersect_unit_sphere(r, interval<T>::in_front_of_image_plane());
     REQUIRE_MESSAGE(t.has_value(),
-                    "the ray leaves the sphere at t = 2.5, beyond the image plane, so it is a hit; got a miss");
+                    "the ray leaves the sphere at t = 2.5, beyond the image plane, so it is a hit; got a miss. The "
+                    "entry root (t = 0.5) is out of range: then the far root is the answer");
     CHECK_MESSAGE(close(*t, T(2.5)),
                   "for a perspective ray only t > 1 is in front of the image plane: the entry at t = 0.5 lies "
                   "between the eye and the image plane and must be skipped, leaving the exit at t = 2.5. Got "
@@ -143,7 +144,8 @@ TEST_CASE_TEMPLATE("a hit exactly at tmin does not count (the range is open)", T
     // the roots are exactly t = 0 (where it starts) and t = 2 (the far side).
     ray<T> r{{0, 0, 1}, {0, 0, -1}};
     auto t = intersect_unit_sphere(r, everything_ahead<T>());
-    REQUIRE_MESSAGE(t.has_value(), "the ray crosses the sphere's far side at t = 2, inside (0, inf); got a miss");
+    REQUIRE_MESSAGE(t.has_value(), "the ray crosses the sphere's far side at t = 2, inside (0, inf); got a miss. The "
+                                   "near root (t = 0) is out of range: then the far root is the answer");
     CHECK_MESSAGE(close(*t, T(2)),
                   "the roots are t = 0 and t = 2, and the range is (0, inf), open at both ends: t = 0 is not "
                   "inside it (test tmin < t < tmax strictly, with range.contains(t), never t >= tmin), so the hit "
