@@ -233,7 +233,7 @@ def geometric_derivation(notation):
         svg.text(20, 400, "f = o − C,   foot = f − (f · d / d · d) d:  a vector subtraction, so the large parts "
                  "of f", size=14)
         svg.text(20, 424, "cancel before anything is squared.   discriminant / 4 = a (r² − foot · foot).", size=14)
-        svg.text(20, 448, "Pythagoras instead (l² = f · f − (f · d̂)²) squares first, then subtracts: the digits "
+        svg.text(20, 448, "Pythagoras instead, l² = f · f − (f · d)² / (d · d), squares first, then subtracts: the digits "
                  "are lost.", size=14, colour=GUIDE)
     return svg
 
