@@ -79,7 +79,8 @@ def kit_environment():
 def static_checks(kit, work):
     # Nothing private or instructor-only, by path or by content.
     for rel in ("solutions", "tests/hidden", "tests/fixtures", "tests/tools", "tests/fuzz", "tests/numerics",
-                "tools/export", "tools/render", "tools/bench", "tools/study", "tools/test-all", "tools/render-all",
+                "tools/export", "tools/render", "tools/bench", "tools/study", "tools/diagrams", "tools/test-all",
+                "tools/render-all",
                 "tests/scenes/scene_plan_test.cpp"):
         check(not os.path.exists(os.path.join(kit, rel)), f"the kit contains {rel}")
     check(rtexport.ship_check(kit) == [], f"files of the kit not on the list: {rtexport.ship_check(kit)}")

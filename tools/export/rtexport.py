@@ -71,6 +71,13 @@ TEMPLATES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "templates"
 # name solutions/, the dev preset, tools that stay out): the kit's copy drops
 # everything from the opening marker line to the closing one.
 INSTRUCTOR_ONLY = ("<!-- instructor-only -->", "<!-- /instructor-only -->")
+# Words of a README that name something the kit leaves out, and what the
+# kit's copy says instead (for mentions inside a sentence, where a marker
+# line cannot cut). tools/diagrams stays out: its figures compute crossings,
+# slabs and boxes, i.e. the exercises' geometry.
+KIT_REWRITES = [
+    (r"\(drawn by `tools/diagrams/make_diagrams\.py`\.\)", "(drawn by the course's figure script.)"),
+]
 # The presets a kit keeps (and the hidden ones they inherit): the others build
 # the solutions, which the kit does not have.
 KIT_PRESETS = ["student"]
@@ -204,8 +211,12 @@ def _copy(repo, rel, dst):
         with open(src) as f, open(dst, "w") as g:
             g.write(kit_presets(f.read()))
     elif rel.endswith(".md"):
-        with open(src) as f, open(dst, "w") as g:
-            g.write(strip_instructor_only(f.read(), rel))
+        with open(src) as f:
+            text = strip_instructor_only(f.read(), rel)
+        for pattern, replacement in KIT_REWRITES:
+            text = re.sub(pattern, replacement, text)
+        with open(dst, "w") as g:
+            g.write(text)
     else:
         shutil.copy2(src, dst)
 
