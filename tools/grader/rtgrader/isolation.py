@@ -309,3 +309,39 @@ def _remove_stale(parent):
         pid = name[len("rt-grader-"):]
         if name.startswith("rt-grader-") and pid.isdigit() and not os.path.exists(f"/proc/{pid}"):
             _remove_quietly(os.path.join(parent, name))
+
+
+def no_new_namespaces_filter():
+    """A seccomp program (classic BPF, as bwrap --seccomp reads it) that stops
+    the sandboxed code from creating user namespaces of its own: unshare() and
+    clone() with CLONE_NEWUSER fail with EPERM, clone3() (whose flags live in
+    memory a filter cannot read) with ENOSYS, so the C library falls back to
+    clone(). Without it, root's sandbox user could still reach the kernel's
+    namespace code (not more files: nothing outside its mount namespace exists
+    for it). x86-64 only; elsewhere every call is allowed. Returns bytes."""
+    import platform
+    import struct
+    if platform.machine() != "x86_64":
+        return None
+    ld_abs, jeq, jge, jset, ret = 0x20, 0x15, 0x35, 0x45, 0x06   # BPF_LD|W|ABS, BPF_JMP|{JEQ,JGE,JSET}|K, BPF_RET|K
+    allow, eperm, enosys = 0x7fff0000, 0x00050000 | 1, 0x00050000 | 38
+    arch_x86_64, nr_clone, nr_unshare, nr_clone3, x32_bit = 0xc000003e, 56, 272, 435, 0x40000000
+    clone_newuser = 0x10000000
+    # (code, jump if true, jump if false, k): jumps count instructions skipped.
+    program = [
+        (ld_abs, 0, 0, 4),                  # 0: A = arch
+        (jeq, 1, 0, arch_x86_64),           # 1: x86-64: to 3
+        (ret, 0, 0, allow),                 # 2: another ABI: not filtered
+        (ld_abs, 0, 0, 0),                  # 3: A = system call number
+        (jge, 8, 0, x32_bit),               # 4: x32 calls: to 13 (ENOSYS)
+        (jeq, 3, 0, nr_clone),              # 5: to 9
+        (jeq, 2, 0, nr_unshare),            # 6: to 9
+        (jeq, 5, 0, nr_clone3),             # 7: to 13 (ENOSYS)
+        (ret, 0, 0, allow),                 # 8
+        (ld_abs, 0, 0, 16),                 # 9: A = low half of the first argument (the flags)
+        (jset, 0, 1, clone_newuser),        # 10: CLONE_NEWUSER: 11, else 12
+        (ret, 0, 0, eperm),                 # 11
+        (ret, 0, 0, allow),                 # 12
+        (ret, 0, 0, enosys),                # 13
+    ]
+    return b"".join(struct.pack("=HBBI", *insn) for insn in program)

@@ -283,6 +283,16 @@ def _readable_by_others(path):
         parent = os.path.dirname(parent)
 
 
+def _reachable_by_others(folder):
+    """Can a user that is neither owner nor in the group enter folder?"""
+    while True:
+        if os.stat(folder).st_mode & 0o001 == 0:
+            return False
+        if folder == "/":
+            return True
+        folder = os.path.dirname(folder)
+
+
 def _mirror(inputs, mirror_root):
     """Fallback: inputs the sandbox user cannot read (e.g. a repository in
     root's 0700 home) are copied under mirror_root (a folder the grader made,
@@ -304,6 +314,12 @@ def _mirror(inputs, mirror_root):
                     shutil.copy2(path, copy)
                 _open_up(copy)
         moved[path] = copy
+        # An unreadable folder above an input (the repository root on the
+        # include path) maps to its copy too, which holds only the inputs.
+        parent = os.path.dirname(path)
+        while parent != "/" and not _reachable_by_others(parent):
+            moved.setdefault(parent, os.path.join(mirror_root, "inputs", parent.lstrip(os.sep)))
+            parent = os.path.dirname(parent)
     return moved
 
 
@@ -335,9 +351,11 @@ def _replace_prefixes(arg, moved):
     return arg
 
 
-def _bwrap_command(iso, argv, limits, inputs, scratch, cwd, user):
+def _bwrap_command(iso, argv, limits, inputs, scratch, cwd, user, seccomp_fd=None):
     args = [iso.bwrap] + isolation.namespace_args(limits.tmp_bytes, limits.shm_bytes) + isolation.system_binds()
-    binds = [("--ro-bind", os.path.abspath(p)) for p in inputs]
+    if seccomp_fd is not None:
+        args += ["--seccomp", str(seccomp_fd)]
+    binds = [("--ro-bind", p) for p in sorted({os.path.abspath(p) for p in inputs})]
     if scratch:
         binds.append(("--bind", os.path.abspath(scratch)))
     made = {"/", "/usr", "/etc", "/tmp", "/dev", "/dev/shm", "/proc"}
@@ -372,12 +390,24 @@ def run(argv, *, limits, log_path, user=None, inputs=(), scratch=None, env_extra
     pass_fds: descriptors it inherits (pipes to the grader)
     """
     iso = iso or isolation.detect()
+    inputs = list(inputs)
+    program = os.path.abspath(argv[0]) if os.path.isabs(argv[0]) else None
+    if program and not program.startswith(("/usr/", "/bin/")) and not (
+            scratch and program.startswith(os.path.abspath(scratch) + os.sep)):
+        inputs.append(program)     # the program itself is always an input
     token = secrets.token_hex(8)
     private_root = private_root or "/tmp"
     moved, own_cwd = {}, None
+    seccomp_fd = None
     if iso.mode == isolation.NAMESPACES:
         cwd = os.path.abspath(scratch) if scratch else "/tmp"
-        cmd = _bwrap_command(iso, argv, limits, inputs, scratch, cwd, user)
+        program_bytes = isolation.no_new_namespaces_filter() if user is not None else None
+        if program_bytes:     # root's sandbox user may not make user namespaces (unprivileged bwrap forbids them itself)
+            seccomp_fd, w = os.pipe()
+            os.write(w, program_bytes)
+            os.close(w)
+            pass_fds = tuple(pass_fds) + (seccomp_fd,)
+        cmd = _bwrap_command(iso, argv, limits, inputs, scratch, cwd, user, seccomp_fd)
     else:
         if user is not None:
             moved = _mirror(inputs, private_root)
@@ -425,6 +455,9 @@ def run(argv, *, limits, log_path, user=None, inputs=(), scratch=None, env_extra
                                     env=env, stdin=subprocess.DEVNULL, stdout=log, stderr=log,
                                     start_new_session=True, preexec_fn=prepare_child, pass_fds=pass_fds,
                                     close_fds=True, **kwargs)
+        if seccomp_fd is not None:
+            os.close(seccomp_fd)
+            seccomp_fd = None
         timed_out = False
         try:
             proc.wait(timeout=limits.wall_seconds)
@@ -434,6 +467,8 @@ def run(argv, *, limits, log_path, user=None, inputs=(), scratch=None, env_extra
         _end_run(proc.pid, iso, user, token, cgroup)
         proc.wait()
     finally:
+        if seccomp_fd is not None:
+            os.close(seccomp_fd)
         if cgroup and os.path.isdir(cgroup):
             iso.cgroup.kill_and_remove(cgroup)
         if iso.mode != isolation.NAMESPACES and user is not None:
