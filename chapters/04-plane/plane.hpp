@@ -18,7 +18,9 @@ namespace rt::ch04 {
 // intersect_plane
 //
 // Inputs
-//   p      a plane through p.point with normal p.normal (not necessarily unit, never zero)
+//   p      a plane through p.point with normal p.normal (not necessarily unit, never zero;
+//          any finite length, even one whose square overflows or underflows T,
+//          such as 1e30 or 1e-30 in float: normalise without squaring first)
 //   r      a ray r(t) = r.origin + t * r.direction
 //   range  the open interval (range.min, range.max) of acceptable t
 //
@@ -32,6 +34,12 @@ namespace rt::ch04 {
 //     object  left at -1
 //   A ray parallel to the plane (including one lying in it) is a miss: never
 //   a NaN, never an infinity, never a division by zero that passes as a hit.
+//   Parallel means that d.n, as computed in T, is 0: a tiny non-zero d.n is a
+//   genuine, far hit. (When the products d_i n_i need more digits than T has,
+//   a d.n that is exactly 0 can round to a tiny number; then the answer may be
+//   a hit at an enormous t, or, for a ray lying in the plane, at a point of
+//   the ray, which is on the plane. Deciding those exactly is chapter 07's
+//   subject; the tests do not ask it here.)
 template <class T>
 std::optional<hit_record<T>> intersect_plane(const plane<T>& p, const ray<T>& r, const interval<T>& range);
 

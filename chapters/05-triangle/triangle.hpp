@@ -46,7 +46,16 @@ vec3<T> barycentric(const triangle<T>& tri, const vec3<T>& p);
 //             ray's origin (dot(normal, r.direction) < 0)
 //     object  left at -1
 //   A degenerate triangle (zero area) and a ray parallel to the triangle's
-//   plane are misses, never NaN.
+//   plane are misses, never NaN. "Zero" is as computed in T: when rounding
+//   makes the n of an exactly degenerate triangle, or the d.n of a ray lying
+//   exactly in the plane, a tiny non-zero number, a hit may be reported; it
+//   is then a point of the ray (deciding exactly is chapter 07's subject).
+//
+// Both functions: a triangle of any size, even one whose edge^4 overflows or
+// underflows T (edges of 1e10 or 1e-12 in float, 1e80 or 1e-80 in double),
+// gives the same answers as the same triangle at unit size: scale the edges
+// by a power of two before multiplying them (README, "Very small and very
+// large triangles").
 template <class T>
 std::optional<hit_record<T>> intersect_triangle(const triangle<T>& tri, const ray<T>& r, const interval<T>& range);
 

@@ -305,3 +305,25 @@ TEST_CASE_TEMPLATE("hidden: random rays agree with a higher-precision answer", T
     CHECK_MESSAGE(wrong_t == 0, "random rays: some hits returned a t that is not the crossing of ray and plane");
     CHECK_MESSAGE(bad_record == 0, "random rays: some hit records had a wrong point or normal");
 }
+
+TEST_CASE_TEMPLATE("hidden: exactly parallel rays whose rounded d.n is not 0 keep the contract", T, RT_SCALARS) {
+    // d.n = 0 exactly, but the rounded d.n is 2^-(2h+1) (h = digits / 2 + 1):
+    // the header allows a far hit here (or, in the plane, a point of the
+    // ray), never a NaN, an infinity or a t outside the range.
+    const int h = std::numeric_limits<T>::digits / 2 + 1;
+    const vec3<T> d(1 + std::ldexp(T(1), -h), 1 + std::ldexp(T(1), -h) + std::ldexp(T(1), -h - 1),
+                    std::ldexp(T(1), -2 * h - 1));
+    const vec3<T> n(-(1 + std::ldexp(T(1), -h - 1)), 1, 1);
+    bool ok = dot(d, n) != T(0);  // the case is stiff
+    // One unit off the plane: a crossing, if reported, is far beyond 1e6.
+    auto off = intersect_plane(plane<T>{{0, 0, 1}, n, 0}, ray<T>{{0, 0, 0}, d}, ahead<T>());
+    ok = ok && (!off || (std::isfinite(off->t) && off->t > T(1e6) && good_normal(*off, plane<T>{{0, 0, 1}, n, 0},
+                                                                                  ray<T>{{0, 0, 0}, d})));
+    // A tmax of 1e6 (a scene's size) turns it into the miss it is.
+    ok = ok && !intersect_plane(plane<T>{{0, 0, 1}, n, 0}, ray<T>{{0, 0, 0}, d}, interval<T>{0, T(1e6)});
+    // In the plane (it passes through o + d): any reported t is in range and finite.
+    auto in = intersect_plane(plane<T>{d, n, 0}, ray<T>{{0, 0, 0}, d}, interval<T>{0, T(10)});
+    ok = ok && (!in || (std::isfinite(in->t) && in->t > 0 && in->t < T(10)));
+    CHECK_MESSAGE(ok, "a ray whose rounded d.n is tiny but not 0 must still give a finite t inside the range (a far "
+                      "crossing), never NaN or infinity");
+}

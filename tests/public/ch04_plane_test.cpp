@@ -31,6 +31,11 @@ TEST_CASE_TEMPLATE("a ray straight down onto the ground hits it", T, RT_SCALARS)
     // From height 3 straight down: t = (p0 - o).n / (d.n) = (0 - 3) / (-1) = 3.
     ray<T> r{{1, 3, 2}, {0, -1, 0}};
     auto hit = intersect_plane(ground<T>(), r, everything_ahead<T>());
+    // A miss here is most often a sign error: ask again with the whole line as the range.
+    auto anywhere = intersect_plane(ground<T>(), r, interval<T>{-infinity<T>, infinity<T>});
+    CHECK_MESSAGE(!(anywhere && close(anywhere->t, T(-3))),
+                  "t came out as -3: the sign is flipped. The numerator is (p0 - o) . n, from the ray's origin to "
+                  "the plane, not (o - p0) . n; with it a plane ahead of the ray gets a positive t");
     REQUIRE_MESSAGE(hit.has_value(), "a ray pointing straight at the plane must hit it; got a miss");
     CHECK_MESSAGE(close(hit->t, T(3)),
                   "t = (p0 - o) . n / (d . n) = (0 - 3) / (-1) = 3 for a ray from height 3 going straight "
@@ -136,4 +141,32 @@ TEST_CASE_TEMPLATE("a non-unit plane normal gives the same hit and a unit normal
                       << describe_hit(hit));
     CHECK_MESSAGE(close(hit->normal.z, T(1)), "the ray comes from +z, so the normal facing it is (0, 0, 1); got "
                                                   << describe_hit(hit));
+}
+
+TEST_CASE_TEMPLATE("a ray that skims the plane is not parallel", T, RT_SCALARS) {
+    // d.n = -0.001: nearly parallel, and a real crossing at t = 1000 (the floor near the horizon).
+    ray<T> r{{0, 1, 0}, {1, T(-0.001), 0}};
+    auto hit = intersect_plane(ground<T>(), r, everything_ahead<T>());
+    REQUIRE_MESSAGE(hit.has_value(), "d . n = -0.001 is small, not zero: the ray reaches the ground at t = 1000. A test "
+                                     "like |d . n| < 0.01 (an epsilon for 'parallel') throws away the far floor; only "
+                                     "d . n == 0 is parallel. Got a miss");
+    CHECK_MESSAGE(std::fabs(hit->t - T(1000)) <= T(1000) * T(1e-4), "the crossing is at t = 1000; got " << describe_hit(hit));
+}
+
+TEST_CASE_TEMPLATE("a plane normal of extreme length is normalised without overflow", T, RT_SCALARS) {
+    // n.n overflows (1e30 in float, 1e200 in double) or underflows (1e-30, 1e-200) T.
+    const T huge = sizeof(T) == 4 ? T(1e30) : T(1e200);
+    const T tiny = sizeof(T) == 4 ? T(1e-30) : T(1e-200);
+    ray<T> r{{1, 2, 3}, {0, -1, 0}};
+    for (T len : {huge, tiny}) {
+        auto hit = intersect_plane(plane<T>{{0, 0, 0}, {0, len, 0}, 0}, r, everything_ahead<T>());
+        REQUIRE_MESSAGE(hit.has_value(), "the plane y = 0 with normal (0, " << len << ", 0) is the ground: a hit at "
+                                                                              "t = 2; got a miss (n . n under- or "
+                                                                              "overflowed?)");
+        CHECK_MESSAGE(close(hit->t, T(2)), "t = 2 whatever the normal's length; got " << describe_hit(hit));
+        CHECK_MESSAGE((is_unit(hit->normal) && close(hit->normal.y, T(1))),
+                      "normal (0, " << len << ", 0): n . n = " << len * len << " in T, so n / length(n) breaks. Divide "
+                      "by the largest component first, then by the length; expected (0, 1, 0), got "
+                                    << describe_hit(hit));
+    }
 }

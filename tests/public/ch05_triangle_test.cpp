@@ -72,7 +72,7 @@ TEST_CASE_TEMPLATE("a ray past any one edge misses the triangle", T, RT_SCALARS)
 TEST_CASE_TEMPLATE("points on an edge or a corner count as inside", T, RT_SCALARS) {
     const triangle<T> tri = corner_triangle<T>();
     const T points[][2] = {{1, 0}, {1, 1}, {0, 1}, {0, 0}, {2, 0}, {0, 2}};
-    const char* names[] = {"the middle of edge a -> b", "the middle of edge b -> c", "the middle of edge c -> a",
+    const std::string names[] = {"the middle of edge a -> b", "the middle of edge b -> c", "the middle of edge c -> a",
                            "corner a",                  "corner b",                  "corner c"};
     for (int i = 0; i < 6; ++i) {
         auto hit = intersect_triangle(tri, down_onto(points[i][0], points[i][1]), everything_ahead<T>());
@@ -178,4 +178,23 @@ TEST_CASE_TEMPLATE("triangle hits outside (tmin tmax) do not count", T, RT_SCALA
     auto inside = intersect_triangle(tri, r, interval<T>{T(1), T(5)});
     CHECK_MESSAGE((inside.has_value() && close(inside->t, T(3))),
                   "t = 3 lies inside (1, 5), so it is a hit; got " << describe_hit(inside));
+}
+
+TEST_CASE_TEMPLATE("very small and very large triangles are hit like unit ones", T, RT_SCALARS) {
+    // Edges of 2^-40 and 2^40 (float) or 2^-270 and 2^270 (double): edge^4 under- or overflows T.
+    const int e = sizeof(T) == 4 ? 40 : 270;
+    for (int sign : {-1, 1}) {
+        const T size = std::ldexp(T(1), sign * e);
+        const triangle<T> tri{{0, 0, 0}, {2 * size, 0, 0}, {0, 2 * size, 0}, 0};
+        auto inside = intersect_triangle(tri, ray<T>{{size / 2, size / 2, size}, {0, 0, -size}}, everything_ahead<T>());
+        REQUIRE_MESSAGE(inside.has_value(), "a triangle with edges " << double(2 * size) << " long: the ray through "
+                                            "(0.25, 0.25) of it must hit. n . n = edge^4 = " << double(size) * double(size) * 16
+                                            << " leaves T's range: scale the edges by a power of two first (std::ilogb, "
+                                               "std::ldexp). Got a miss");
+        CHECK_MESSAGE(close(inside->t, T(1)), "the hit is at t = 1; got " << describe_hit(inside));
+        CHECK_MESSAGE(rt::test::is_unit(inside->normal), "the unit normal must not under- or overflow; got " << describe_hit(inside));
+        const vec3<T> w = barycentric(tri, vec3<T>{size / 2, size, 0});
+        CHECK_MESSAGE((close(w.x, T(0.25)) && close(w.y, T(0.25)) && close(w.z, T(0.5))),
+                      "barycentric coordinates do not depend on the size: (0.25, 0.25, 0.5); got " << describe(w));
+    }
 }
