@@ -253,7 +253,6 @@ public:
         read_list(d, "planes", [&](const json& j, const std::string& p) { read_plane(d, j, p); });
         read_list(d, "triangles", [&](const json& j, const std::string& p) { read_triangle(d, j, p); });
         read_list(d, "meshes", [&](const json& j, const std::string& p) { read_mesh(d, j, p); });
-        if (auto* g = member(doc_, "generate")) read_generate(d, *g);
         read_list(d, "lights", [&](const json& j, const std::string& p) {
             check_keys(j, p, {"position", "intensity"});
             point_light light;
@@ -261,6 +260,7 @@ public:
             if (auto* i = member(j, "intensity")) light.intensity = read_color(*i, p + ".intensity");
             d.world.lights.push_back(light);
         });
+        if (auto* g = member(doc_, "generate")) read_generate(d, *g);  // last: may pass max_objects
         return d;
     }
 

@@ -27,6 +27,7 @@
 // answer is one select.
 #include "fast_path.hpp"
 
+#include "bvh_build.hpp"
 #include "look.hpp"
 
 #include "common/scene.hpp"   // material_at: the checker pattern
@@ -34,11 +35,14 @@
 
 #include "common/render.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <functional>
 #include <limits>
+#include <string>
 #include <type_traits>
 
 namespace rt::render_tool {
@@ -57,6 +61,11 @@ template <class T>
 using index_t = std::conditional_t<sizeof(T) == 4, std::int32_t, std::int64_t>;
 
 template <class T>
+struct packet {
+    alignas(64) T ox[W], oy[W], oz[W], dx[W], dy[W], dz[W];
+};
+
+template <class T>
 struct soa_scene {
     size_t sphere_count = 0, plane_count = 0, triangle_count = 0;
     // Each array is padded to a multiple of W with NaN entries, which never
@@ -66,11 +75,28 @@ struct soa_scene {
     std::vector<T> ax, ay, az, e1x, e1y, e1z, e2x, e2y, e2z;  // triangles: corner a, edges b-a, c-a
     std::vector<T> bx, by, bz, br2;  // a sphere around each triangle (radius squared), to skip it cheaply
 
-    explicit soa_scene(const scene<double>& s) {
+    // With a tree, spheres and triangles are stored in the trees' leaf
+    // order, so a leaf is a contiguous range of the arrays; original[i] is
+    // then the scene's own number of object i.
+    bool tree = false;
+    bvh_tree sphere_tree, triangle_tree;
+    std::vector<std::int64_t> original;
+
+    // magnitude: the largest coordinate of the scene, eye and lights, which
+    // sets how much the boxes are widened (see boxes below).
+    soa_scene(const scene<double>& s, bool use_tree, double magnitude) : tree(use_tree) {
         sphere_count = s.spheres.size();
         plane_count = s.planes.size();
         triangle_count = s.triangles.size();
-        for (const auto& x : s.spheres) {
+        if (tree) build_trees(s, magnitude);
+        auto sphere_at = [&](size_t j) -> const sphere<double>& {
+            return s.spheres[tree ? sphere_tree.order[j] : j];
+        };
+        auto triangle_at = [&](size_t j) -> const triangle<double>& {
+            return s.triangles[tree ? triangle_tree.order[j] : j];
+        };
+        for (size_t j = 0; j < sphere_count; ++j) {
+            const auto& x = sphere_at(j);
             cx.push_back(T(x.center.x)), cy.push_back(T(x.center.y)), cz.push_back(T(x.center.z));
             radius.push_back(T(x.radius)), radius2.push_back(T(x.radius) * T(x.radius));
         }
@@ -79,7 +105,8 @@ struct soa_scene {
             px.push_back(T(x.point.x)), py.push_back(T(x.point.y)), pz.push_back(T(x.point.z));
             nx.push_back(T(n.x)), ny.push_back(T(n.y)), nz.push_back(T(n.z));
         }
-        for (const auto& x : s.triangles) {
+        for (size_t j = 0; j < triangle_count; ++j) {
+            const auto& x = triangle_at(j);
             // Edges from the corners rounded to T, as the general path sees them.
             vec3<T> a = convert<T>(x.a), e1 = convert<T>(x.b) - a, e2 = convert<T>(x.c) - a;
             ax.push_back(a.x), ay.push_back(a.y), az.push_back(a.z);
@@ -95,13 +122,140 @@ struct soa_scene {
         for (auto* v : {&cx, &cy, &cz, &radius, &radius2, &px, &py, &pz, &nx, &ny, &nz, &ax, &ay, &az, &e1x, &e1y,
                         &e1z, &e2x, &e2y, &e2z, &bx, &by, &bz, &br2})
             while (v->size() % W) v->push_back(std::numeric_limits<T>::quiet_NaN());
+        if (tree) {
+            for (size_t j = 0; j < sphere_count; ++j) original.push_back(std::int64_t(sphere_tree.order[j]));
+            for (size_t j = 0; j < plane_count; ++j) original.push_back(std::int64_t(sphere_count + j));
+            for (size_t j = 0; j < triangle_count; ++j)
+                original.push_back(std::int64_t(sphere_count + plane_count + triangle_tree.order[j]));
+        }
+    }
+
+    // Float boxes that hold each object as the kernels see it, whatever the
+    // rounding: the exact box, rounded outwards to float, widened by
+    // 1e-6 of the scene's magnitude (float's own rounding of a coordinate
+    // or of a ray's origin and direction is 6e-8 of it). A box test in
+    // float can then only let through too much, never drop a hit, so the
+    // tree gives the same closest object and t as brute force.
+    void build_trees(const scene<double>& s, double magnitude) {
+        const double pad = 1e-6 * magnitude;
+        auto box_of = [&](vec3d lo, vec3d hi) {
+            bvh_box b;
+            for (int a = 0; a < 3; ++a) {
+                b.lo[a] = std::nextafter(float(lo[a] - pad), -infinity<float>);
+                b.hi[a] = std::nextafter(float(hi[a] + pad), infinity<float>);
+            }
+            return b;
+        };
+        std::vector<bvh_box> boxes(s.spheres.size());
+        for (size_t i = 0; i < boxes.size(); ++i) {
+            const auto& x = s.spheres[i];
+            boxes[i] = box_of(x.center - vec3d(x.radius), x.center + vec3d(x.radius));
+        }
+        sphere_tree = build_bvh(boxes);
+        boxes.assign(s.triangles.size(), bvh_box{});
+        for (size_t i = 0; i < boxes.size(); ++i) {
+            const auto& x = s.triangles[i];
+            boxes[i] = box_of(glm::min(x.a, glm::min(x.b, x.c)), glm::max(x.a, glm::max(x.b, x.c)));
+        }
+        triangle_tree = build_bvh(boxes);
     }
 };
 
-template <class T>
-struct packet {
-    alignas(64) T ox[W], oy[W], oz[W], dx[W], dy[W], dz[W];
-};
+// A ray direction's reciprocal for the slab test. A zero component becomes
+// 1e30 instead of infinity: (box side - origin) * 1e30 is then 0 or huge,
+// never 0 * infinity = NaN, and the ray counts as between the planes of a
+// slab it lies in (conservative: it is tested against the box's objects).
+inline float slab_reciprocal(float d) {
+    return d == 0.0f ? std::copysign(1e30f, d) : 1.0f / d;
+}
+
+// The far end of a slab interval is widened by a few units in the last
+// place (Ize, "Robust BVH Ray Traversal", JCGT 2013), so a rounded exit
+// never falls just short of a rounded entry for a ray that grazes a box.
+constexpr float slab_widen = 1.0f + 4 * std::numeric_limits<float>::epsilon();
+
+// Depth-first walk of a tree for the 32 rays of a packet. A node is
+// opened when some ray of the packet enters its box before that ray's
+// closest hit so far (best_t, updated by the leaves as they run); leaf(b, e)
+// tests objects [b, e). Children are visited near one first, judged along
+// the first ray's direction, so the closest hits come early and the far
+// child's box is then often passed by.
+template <class T, class Leaf>
+void traverse_packet(const bvh_tree& tree, const packet<T>& p, const T* best_t, Leaf&& leaf) {
+    if (tree.nodes.empty()) return;
+    alignas(64) float ox[W], oy[W], oz[W], ix[W], iy[W], iz[W];
+    for (int k = 0; k < W; ++k) {
+        ox[k] = float(p.ox[k]), oy[k] = float(p.oy[k]), oz[k] = float(p.oz[k]);
+        ix[k] = slab_reciprocal(float(p.dx[k])), iy[k] = slab_reciprocal(float(p.dy[k])),
+        iz[k] = slab_reciprocal(float(p.dz[k]));
+    }
+    const float d0[3] = {float(p.dx[0]), float(p.dy[0]), float(p.dz[0])};
+    auto opened = [&](const bvh_box& b) {
+        int any = 0;
+        for (int k = 0; k < W; ++k) {
+            const float x0 = (b.lo[0] - ox[k]) * ix[k], x1 = (b.hi[0] - ox[k]) * ix[k];
+            const float y0 = (b.lo[1] - oy[k]) * iy[k], y1 = (b.hi[1] - oy[k]) * iy[k];
+            const float z0 = (b.lo[2] - oz[k]) * iz[k], z1 = (b.hi[2] - oz[k]) * iz[k];
+            const float enter = std::max(std::max(std::min(x0, x1), std::min(y0, y1)), std::max(std::min(z0, z1), 0.0f));
+            const float leave = std::min(std::min(std::max(x0, x1), std::max(y0, y1)), std::max(z0, z1)) * slab_widen;
+            // best_t in float, rounded up a little: never below the true value.
+            const float limit = float(best_t[k]) * slab_widen;
+            any |= int((enter <= leave) & (enter <= limit));
+        }
+        return any != 0;
+    };
+    std::uint32_t stack[256];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const bvh_node& n = tree.nodes[stack[--top]];
+        if (!opened(n.box)) continue;
+        if (n.count > 0) {
+            leaf(size_t(n.first), size_t(n.first) + n.count);
+            continue;
+        }
+        const bvh_box &l = tree.nodes[n.first].box, &r = tree.nodes[n.first + 1].box;
+        float towards = 0;  // > 0 when the left child lies further along d0
+        for (int a = 0; a < 3; ++a) towards += ((l.lo[a] + l.hi[a]) - (r.lo[a] + r.hi[a])) * d0[a];
+        // Pushed last is visited first: the near child.
+        stack[top++] = towards > 0 ? n.first : n.first + 1;
+        stack[top++] = towards > 0 ? n.first + 1 : n.first;
+    }
+}
+
+// The same walk for one ray that only asks whether anything blocks it:
+// blocked(b, e) tests objects [b, e) and the walk stops at the first yes.
+template <class T, class Blocked>
+bool traverse_any(const bvh_tree& tree, const ray<T>& r, T tmax, Blocked&& blocked) {
+    if (tree.nodes.empty()) return false;
+    const float o[3] = {float(r.origin.x), float(r.origin.y), float(r.origin.z)};
+    const float d[3] = {float(r.direction.x), float(r.direction.y), float(r.direction.z)};
+    const float inv[3] = {slab_reciprocal(d[0]), slab_reciprocal(d[1]), slab_reciprocal(d[2])};
+    const float limit = float(tmax) * slab_widen;
+    auto opened = [&](const bvh_box& b) {
+        float enter = 0, leave = limit;
+        for (int a = 0; a < 3; ++a) {
+            const float t0 = (b.lo[a] - o[a]) * inv[a], t1 = (b.hi[a] - o[a]) * inv[a];
+            enter = std::max(enter, std::min(t0, t1));
+            leave = std::min(leave, std::max(t0, t1) * slab_widen);
+        }
+        return enter <= leave;
+    };
+    std::uint32_t stack[256];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const bvh_node& n = tree.nodes[stack[--top]];
+        if (!opened(n.box)) continue;
+        if (n.count > 0) {
+            if (blocked(size_t(n.first), size_t(n.first) + n.count)) return true;
+            continue;
+        }
+        stack[top++] = n.first;
+        stack[top++] = n.first + 1;
+    }
+    return false;
+}
 
 // c = |f|^2 - r^2 with the rounding error of each square added back (fma
 // gives a product's exact low half), so a large sphere seen from near its
@@ -204,7 +358,8 @@ void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, i
         best[k] = (old & ~mask) | (id & mask);
     };
     if constexpr (SM != sphere_mode::none) {
-        for (size_t i = 0; i < s.sphere_count; ++i) {
+      auto spheres = [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
             const T cx = s.cx[i], cy = s.cy[i], cz = s.cz[i], r = s.radius[i], rr = s.radius2[i];
             if constexpr (CommonOrigin) {
                 const T fx = p.ox[0] - cx, fy = p.oy[0] - cy, fz = p.oz[0] - cz;
@@ -236,6 +391,11 @@ void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, i
                 }
             }
         }
+      };
+      if (s.tree)
+          traverse_packet(s.sphere_tree, p, best_t, spheres);
+      else
+          spheres(0, s.sphere_count);
     }
     if constexpr (Planes) {
         const I base = I(s.sphere_count);
@@ -250,7 +410,8 @@ void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, i
     }
     if constexpr (Tris) {
         const I base = I(s.sphere_count + s.plane_count);
-        for (size_t i = 0; i < s.triangle_count; ++i) {
+      auto triangles = [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
             const T e1x = s.e1x[i], e1y = s.e1y[i], e1z = s.e1z[i], e2x = s.e2x[i], e2y = s.e2y[i], e2z = s.e2z[i];
             // Cull: skip the triangle when no ray of the packet comes near
             // its bounding sphere (the robust discriminant: accurate even
@@ -282,6 +443,11 @@ void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, i
                 }
             }
         }
+      };
+      if (s.tree)
+          traverse_packet(s.triangle_tree, p, best_t, triangles);
+      else
+          triangles(0, s.triangle_count);
     }
     for (int k = 0; k < W; ++k) {
         tbest[k] = best_t[k];
@@ -303,6 +469,19 @@ bool any_hit(const soa_scene<T>& s, const ray<T>& r, T tmin, T tmax) {
     const T dx = r.direction.x, dy = r.direction.y, dz = r.direction.z;
     const T a = dx * dx + dy * dy + dz * dz, inv_a = T(1) / a;
     if constexpr (SM != sphere_mode::none) {
+        // With a tree: only the leaves whose boxes the ray crosses, one object at a time.
+        if (s.tree) {
+            if (traverse_any(s.sphere_tree, r, tmax, [&](size_t b, size_t e) {
+                    for (size_t j = b; j < e; ++j) {
+                        const T fx = ox - s.cx[j], fy = oy - s.cy[j], fz = oz - s.cz[j];
+                        const T c = SM == sphere_mode::plain ? fx * fx + fy * fy + fz * fz - s.radius2[j]
+                                                             : compensated_c(fx, fy, fz, s.radius[j]);
+                        if (sphere_t<T, SM>(fx, fy, fz, c, s.radius2[j], dx, dy, dz, a, inv_a, tmin) < tmax) return true;
+                    }
+                    return false;
+                }))
+                return true;
+        } else
         for (size_t i = 0; i < round_up(s.sphere_count); i += G) {
             int blocked = 0;
             for (int k = 0; k < G; ++k) {
@@ -327,6 +506,20 @@ bool any_hit(const soa_scene<T>& s, const ray<T>& r, T tmin, T tmax) {
         }
     }
     if constexpr (Tris) {
+        if (s.tree) {
+            if (traverse_any(s.triangle_tree, r, tmax, [&](size_t b, size_t e) {
+                    for (size_t j = b; j < e; ++j) {
+                        const T sx = ox - s.ax[j], sy = oy - s.ay[j], sz = oz - s.az[j];
+                        const T qx = sy * s.e1z[j] - sz * s.e1y[j], qy = sz * s.e1x[j] - sx * s.e1z[j],
+                                qz = sx * s.e1y[j] - sy * s.e1x[j];
+                        if (triangle_t(sx, sy, sz, qx, qy, qz, s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j],
+                                       s.e2z[j], dx, dy, dz, tmin) < tmax)
+                            return true;
+                    }
+                    return false;
+                }))
+                return true;
+        } else
         for (size_t i = 0; i < round_up(s.triangle_count); i += G) {
             int blocked = 0;
             for (int k = 0; k < G; ++k) {
@@ -352,11 +545,41 @@ struct context {
     std::vector<int> material_of;  // by object number
     T tmin;
 
-    context(const scene_description& d, int width, int height)
-        : soa(d.world), camera(d.camera, width, height), world(d.world), tmin(camera.primary_range().min) {
-        for (const auto& s : d.world.spheres) material_of.push_back(s.material);
-        for (const auto& p : d.world.planes) material_of.push_back(p.material);
-        for (const auto& t : d.world.triangles) material_of.push_back(t.material);
+    context(const scene_description& d, int width, int height, bool tree)
+        : soa(d.world, tree, magnitude(d)), camera(d.camera, width, height), world(d.world),
+          tmin(camera.primary_range().min) {
+        const size_t spheres = d.world.spheres.size(), planes = d.world.planes.size();
+        for (size_t i = 0; i < size_t(d.world.object_count()); ++i) {
+            const size_t o = original(i);
+            material_of.push_back(o < spheres            ? d.world.spheres[o].material
+                                  : o < spheres + planes ? d.world.planes[o - spheres].material
+                                                         : d.world.triangles[o - spheres - planes].material);
+        }
+    }
+
+    // The scene's own number of the object stored as number i.
+    size_t original(size_t i) const { return soa.tree ? size_t(soa.original[i]) : i; }
+
+    // The largest coordinate in the scene, the eye and the lights.
+    static double magnitude(const scene_description& d) {
+        double m = 0;
+        auto see = [&](const vec3d& p) { m = std::max({m, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}); };
+        see(d.camera.eye);
+        for (const auto& l : d.world.lights) see(l.position);
+        for (const auto& x : d.world.spheres) see(glm::abs(x.center) + vec3d(x.radius));
+        for (const auto& x : d.world.triangles) see(x.a), see(x.b), see(x.c);
+        return m;
+    }
+
+    // One line about the trees, for the render's report.
+    std::string describe_trees() const {
+        char line[200];
+        const bvh_tree& a = soa.sphere_tree;
+        const bvh_tree& b = soa.triangle_tree;
+        std::snprintf(line, sizeof line, "tree: built in %.0f ms on %d threads, %.1f MB, %zu leaves, depth %zu",
+                      1e3 * (a.build_seconds + b.build_seconds), render_threads(), double(a.bytes() + b.bytes()) / 1e6,
+                      a.leaves + b.leaves, std::max(a.depth, b.depth));
+        return line;
     }
 
     // The packet of rays through a tile of tile_w x tile_h pixels with its
@@ -398,8 +621,9 @@ struct context {
 };
 
 template <class T, sphere_mode SM, bool Planes, bool Tris, bool Lights>
-image render_with(const scene_description& d, int width, int height, long& rays) {
-    const context<T> ctx(d, width, height);
+image render_with(const scene_description& d, int width, int height, bool tree, long& rays) {
+    const context<T> ctx(d, width, height, tree);
+    if (tree) std::printf("%s\n", ctx.describe_trees().c_str());
     image img(width, height);
     std::atomic<long> shadow_rays{0};
     for_each_row((height + tile_h - 1) / tile_h, [&](int tile_row) {
@@ -442,8 +666,8 @@ image render_with(const scene_description& d, int width, int height, long& rays)
 }
 
 template <class T, sphere_mode SM, bool Planes, bool Tris>
-primary_hits trace_with(const scene_description& d, int width, int height) {
-    const context<T> ctx(d, width, height);
+primary_hits trace_with(const scene_description& d, int width, int height, bool tree) {
+    const context<T> ctx(d, width, height, tree);
     primary_hits hits;
     hits.object.assign(size_t(width) * size_t(height), -1);
     hits.t.assign(size_t(width) * size_t(height), 0);
@@ -459,7 +683,7 @@ primary_hits trace_with(const scene_description& d, int width, int height) {
                 const int col = col0 + k % tile_w, row = row0 + k / tile_w;
                 if (col >= width || row >= height) continue;
                 size_t i = size_t(row) * size_t(width) + size_t(col);
-                hits.object[i] = int(object[k]);
+                hits.object[i] = object[k] < 0 ? -1 : int(ctx.original(size_t(object[k])));
                 hits.t[i] = (long double)t[k];
             }
         }
@@ -468,8 +692,8 @@ primary_hits trace_with(const scene_description& d, int width, int height) {
 }
 
 template <class T, sphere_mode SM, bool Planes, bool Tris>
-long count_with(const scene_description& d, int width, int height) {
-    const context<T> ctx(d, width, height);
+long count_with(const scene_description& d, int width, int height, bool tree) {
+    const context<T> ctx(d, width, height, tree);
     std::atomic<long> hits{0};
     for_each_row((height + tile_h - 1) / tile_h, [&](int tile_row) {
         const int row0 = tile_row * tile_h;
@@ -518,7 +742,7 @@ image render_fast(const scene_description& d, const scene_plan& plan, int width,
         return dispatch(mode_of(plan), plan.planes > 0, plan.triangles > 0, plan.lights > 0,
                         [&](auto SM, auto P, auto Tr, auto L) {
                             return render_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value,
-                                               decltype(L)::value>(d, width, height, rays);
+                                               decltype(L)::value>(d, width, height, plan.tree, rays);
                         });
     };
     return plan.prec == precision::single ? run(float{}) : run(double{});
@@ -528,7 +752,7 @@ primary_hits trace_primary(const scene_description& d, const scene_plan& plan, i
     auto run = [&](auto type) {
         using T = decltype(type);
         return dispatch(mode_of(plan), plan.planes > 0, plan.triangles > 0, false, [&](auto SM, auto P, auto Tr, auto) {
-            return trace_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value>(d, width, height);
+            return trace_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value>(d, width, height, plan.tree);
         });
     };
     return plan.prec == precision::single ? run(float{}) : run(double{});
@@ -538,7 +762,7 @@ long count_primary_hits(const scene_description& d, const scene_plan& plan, int 
     auto run = [&](auto type) {
         using T = decltype(type);
         return dispatch(mode_of(plan), plan.planes > 0, plan.triangles > 0, false, [&](auto SM, auto P, auto Tr, auto) {
-            return count_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value>(d, width, height);
+            return count_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value>(d, width, height, plan.tree);
         });
     };
     return plan.prec == precision::single ? run(float{}) : run(double{});
@@ -549,7 +773,7 @@ primary_hits trace_primary_reference(const scene_description& d, int width, int 
     return dispatch(spheres ? sphere_mode::robust : sphere_mode::none, !d.world.planes.empty(),
                     !d.world.triangles.empty(), false, [&](auto SM, auto P, auto Tr, auto) {
                         return trace_with<long double, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value>(
-                            d, width, height);
+                            d, width, height, false);
                     });
 }
 

@@ -45,6 +45,7 @@ scene_plan make_plan(const scene_description& scene, double bound, std::optional
     plan.planes = w.planes.size();
     plan.triangles = w.triangles.size();
     plan.lights = w.lights.size();
+    plan.tree = plan.spheres + plan.triangles >= scene_plan::tree_threshold;
     plan.pinhole = scene.camera.type == camera_description::kind::pinhole;
     plan.bound = bound;
     plan.precision_forced = forced.has_value();
@@ -101,7 +102,7 @@ scene_plan make_plan(const scene_description& scene, double bound, std::optional
 }
 
 std::string scene_plan::describe() const {
-    char buffer[600];
+    char buffer[900];
     if (general) {
         std::snprintf(buffer, sizeof buffer,
                       "plan: GENERAL path (forced): %zu spheres, %zu planes, %zu triangles, %zu lights; "
@@ -110,6 +111,11 @@ std::string scene_plan::describe() const {
                       spheres, planes, triangles, lights, name_of(prec), lights ? " with shadow rays" : "");
         return buffer;
     }
+    const size_t bounded = spheres + triangles;
+    const std::string search =
+        tree ? "BVH over " + std::to_string(bounded) + " spheres and triangles (brute force would test all of them per ray)"
+             : "brute force (" + std::to_string(bounded) + " spheres and triangles, fewer than " +
+                   std::to_string(tree_threshold) + ": a tree would not pay for its build)";
     std::string kept, left_out;
     auto note = [](std::string& list, const std::string& item) { list += (list.empty() ? "" : ", ") + item; };
     if (spheres) note(kept, std::to_string(spheres) + " spheres"); else note(left_out, "sphere loop");
@@ -119,13 +125,14 @@ std::string scene_plan::describe() const {
     else note(left_out, "lighting and shadow rays (no lights)");
     std::snprintf(buffer, sizeof buffer,
                   "plan: specialised path: %s; left out: %s; conditioning %.3g (extent %.3g / smallest %.3g) -> "
-                  "%s %s%s, estimated error %.2g of an object's size (bound %.2g)%s",
+                  "%s %s%s, estimated error %.2g of an object's size (bound %.2g)%s; %s",
                   kept.empty() ? "no objects (background only)" : kept.c_str(),
                   left_out.empty() ? "nothing" : left_out.c_str(), conditioning(), extent, smallest, name_of(prec),
                   spheres ? name_of(form) : "(no sphere test)", spheres ? " sphere test" : "", estimated_error, bound,
                   estimated_error <= bound ? ""
                   : precision_forced ? " - OVER the bound: no formulation in this precision meets it"
-                                     : " - OVER the bound: no formulation meets it");
+                                     : " - OVER the bound: no formulation meets it",
+                  search.c_str());
     return buffer;
 }
 

@@ -41,6 +41,15 @@ struct scene_plan {
     sphere_formulation form = sphere_formulation::plain;
     double estimated_error = 0;
     double bound = 1e-3;
+    // Search structure: brute force tests every object for every packet of
+    // rays (cheap per object: most are culled after one discriminant), a
+    // tree about 2 log2(N) boxes and a few objects per ray but must first be
+    // built. rt-bench measures brute force level with a tree at a few
+    // hundred objects; from tree_threshold spheres + triangles on, the
+    // tree is used (planes, unbounded, stay in the brute-force loop).
+    static constexpr size_t tree_threshold = 128;
+    bool tree = false;
+
     bool general = false;          // the general path was forced (--general)
     bool precision_forced = false; // --precision fixed the precision
 

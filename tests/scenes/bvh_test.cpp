@@ -1,0 +1,111 @@
+// bvh_test.cpp — the renderer's tree (tools/render/bvh_build.hpp) gives the
+// same answers as brute force, bit for bit: the same object and the same t
+// for every primary ray. The leaves run the brute-force kernels unchanged,
+// so the tree may only decide *which* objects are tested; a box that wrongly
+// dropped an object (rounding in the slab test, a zero direction component,
+// a flat box) would show here as a pixel on another object or at another t.
+#include "fast_path.hpp"
+#include "scene_plan.hpp"
+
+#include "common/spd.hpp"
+
+#include <doctest/doctest.h>
+
+#include <random>
+#include <string>
+
+using namespace rt;
+using namespace rt::render_tool;
+
+namespace {
+
+const char* camera_of(const std::string& type) {
+    if (type == "orthographic")  // looking straight down -z: rays with two zero direction components
+        return R"("camera": {"type": "orthographic", "eye": [0, 0, 5], "look_at": [0, 0, 0], "view_height": 3.5})";
+    return R"("camera": {"eye": [2.1, 1.3, 1.7], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 50})";
+}
+
+scene_description generated(const std::string& name, int size, const std::string& camera) {
+    return parse_scene(std::string("{") + camera_of(camera) + R"(, "materials": [{}, {}], "generate": {"name": ")" +
+                           name + R"(", "size": )" + std::to_string(size) + "}}",
+                       "bvh-test.json");
+}
+
+// Random spheres and triangles (some of them flat in z: a planar mesh has
+// boxes of zero thickness), seeded.
+scene_description random_scene(unsigned seed, const std::string& camera) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-1.5, 1.5), r(0.01, 0.15);
+    std::string text = std::string("{") + camera_of(camera) + R"(, "spheres": [)";
+    auto point = [&](double z) { return "[" + std::to_string(u(rng)) + ", " + std::to_string(u(rng)) + ", " + std::to_string(z) + "]"; };
+    for (int i = 0; i < 300; ++i)
+        text += std::string(i ? ", " : "") + R"({"center": )" + point(u(rng)) + R"(, "radius": )" + std::to_string(r(rng)) + "}";
+    text += R"(], "triangles": [)";
+    for (int i = 0; i < 300; ++i) {
+        const double z = i % 2 ? -0.25 : u(rng);  // every other triangle in the plane z = -0.25
+        text += std::string(i ? ", " : "") + R"({"a": )" + point(z) + R"(, "b": )" + point(i % 2 ? z : u(rng)) +
+                R"(, "c": )" + point(i % 2 ? z : u(rng)) + "}";
+    }
+    return parse_scene(text + "]}", "bvh-random.json");
+}
+
+// Primary hits with and without the tree, in the plan's precision and in
+// the other one: the same t for every pixel, bit for bit. The object is the
+// same too, except at an exact tie: where two objects are hit at the very
+// same t (the shared edge of two triangles of a flat mesh, coplanar
+// overlapping triangles), brute force keeps the lower number and the tree
+// the one its leaves reach first; both are right, and the tie is checked
+// to be one (the tree's object reports that same t).
+void check_tree_equals_brute_force(const scene_description& d) {
+    for (precision p : {precision::single, precision::double_}) {
+        scene_plan plan = make_plan(d, 1e-3, p);
+        plan.tree = true;
+        const primary_hits with = trace_primary(d, plan, 64, 48);
+        plan.tree = false;
+        const primary_hits without = trace_primary(d, plan, 64, 48);
+        int other_t = 0, ties = 0, hits = 0;
+        for (size_t i = 0; i < with.object.size(); ++i) {
+            const bool same_t = with.t[i] == without.t[i] && (with.object[i] < 0) == (without.object[i] < 0);
+            if (!same_t && other_t < 3)
+                MESSAGE("pixel " << i << ": tree " << with.object[i] << " t=" << double(with.t[i]) << ", brute force "
+                                 << without.object[i] << " t=" << double(without.t[i]));
+            other_t += !same_t;
+            ties += same_t && with.object[i] != without.object[i];
+            hits += without.object[i] >= 0;
+        }
+        CAPTURE(p == precision::single ? "float" : "double");
+        CHECK(hits > 100);  // the view really shows the objects
+        CHECK(other_t == 0);
+        CHECK(ties <= int(with.object.size()) / 50);  // ties are rare, not a different answer in disguise
+    }
+}
+
+}  // namespace
+
+TEST_CASE("tree = brute force: sphereflake, pinhole and orthographic") {
+    check_tree_equals_brute_force(generated("balls", 3, "pinhole"));
+    check_tree_equals_brute_force(generated("balls", 3, "orthographic"));
+}
+
+TEST_CASE("tree = brute force: Sierpinski tetrahedron and fractal mountain (triangles)") {
+    check_tree_equals_brute_force(generated("tetra", 4, "pinhole"));
+    check_tree_equals_brute_force(generated("mount", 4, "pinhole"));
+    check_tree_equals_brute_force(generated("mount", 4, "orthographic"));  // looking down on the mountain
+}
+
+TEST_CASE("tree = brute force: random spheres and triangles, some flat") {
+    for (unsigned seed : {1u, 2u, 3u}) {
+        CAPTURE(seed);
+        check_tree_equals_brute_force(random_scene(seed, "pinhole"));
+        check_tree_equals_brute_force(random_scene(seed, "orthographic"));
+    }
+}
+
+TEST_CASE("the plan uses a tree from tree_threshold objects on and says so") {
+    const scene_plan small = make_plan(generated("balls", 1, "pinhole"), 1e-3, std::nullopt);  // 10 spheres
+    CHECK_FALSE(small.tree);
+    CHECK(small.describe().find("brute force (10 spheres and triangles") != std::string::npos);
+    const scene_plan big = make_plan(generated("balls", 3, "pinhole"), 1e-3, std::nullopt);  // 820 spheres
+    CHECK(big.tree);
+    CHECK(big.describe().find("BVH over 820 spheres and triangles") != std::string::npos);
+}

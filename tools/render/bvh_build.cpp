@@ -1,0 +1,280 @@
+// bvh_build.cpp — binned SAH build of the renderer's tree (see bvh_build.hpp).
+//
+// The surface area heuristic: a ray that hits a box hits a child box inside
+// it with probability (child area / box area), so splitting n objects into
+// (nL, nR) costs about   1 + (area_L * nL + area_R * nR) / area
+// object tests per ray, against n for a leaf. Candidate splits are the
+// boundaries between 16 equal bins of the objects' centres along the
+// widest axis; one pass counts each bin's objects and grows its box, a
+// sweep from each side then prices all 15 splits.
+#include "bvh_build.hpp"
+
+#include "common/render.hpp"
+#include "common/timing.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <mutex>
+
+namespace rt::render_tool {
+
+namespace {
+
+constexpr int bins = 16;
+constexpr size_t min_leaf = 4;
+constexpr size_t parallel_bin_threshold = size_t(1) << 18;  // bigger nodes bin in parallel chunks
+constexpr size_t task_size = size_t(1) << 17;                // smaller subtrees are one task each
+
+// The build moves these, in order, rather than indices: 32 bytes each.
+struct record {
+    bvh_box box;
+    std::uint32_t id, pad;
+};
+
+bvh_box empty_box() {
+    const float inf = std::numeric_limits<float>::infinity();
+    return {{inf, inf, inf}, {-inf, -inf, -inf}};
+}
+void grow(bvh_box& b, const bvh_box& o) {
+    for (int a = 0; a < 3; ++a) b.lo[a] = std::min(b.lo[a], o.lo[a]), b.hi[a] = std::max(b.hi[a], o.hi[a]);
+}
+void grow(bvh_box& b, const float p[3]) {
+    for (int a = 0; a < 3; ++a) b.lo[a] = std::min(b.lo[a], p[a]), b.hi[a] = std::max(b.hi[a], p[a]);
+}
+double area(const bvh_box& b) {
+    const double x = double(b.hi[0]) - b.lo[0], y = double(b.hi[1]) - b.lo[1], z = double(b.hi[2]) - b.lo[2];
+    return x < 0 ? 0 : 2 * (x * y + y * z + z * x);
+}
+void centre(const record& r, float c[3]) {
+    for (int a = 0; a < 3; ++a) c[a] = 0.5f * (r.box.lo[a] + r.box.hi[a]);
+}
+
+// What one pass over a range learns: per bin, its objects' box, their
+// centres' box and their number.
+struct bin_stats {
+    std::array<bvh_box, bins> box, centres;
+    std::array<size_t, bins> count{};
+    bin_stats() { box.fill(empty_box()), centres.fill(empty_box()); }
+    void merge(const bin_stats& o) {
+        for (int i = 0; i < bins; ++i) grow(box[i], o.box[i]), grow(centres[i], o.centres[i]), count[i] += o.count[i];
+    }
+};
+
+// Which bin a record's centre falls in, along `axis`.
+struct binner {
+    int axis;
+    float low, scale;
+    int operator()(const record& r) const {
+        float c[3];
+        centre(r, c);
+        return std::clamp(int((c[axis] - low) * scale), 0, bins - 1);
+    }
+};
+
+void bin_range(const record* r, size_t n, const binner& which, bin_stats& s) {
+    for (size_t i = 0; i < n; ++i) {
+        const int b = which(r[i]);
+        float c[3];
+        centre(r[i], c);
+        grow(s.box[size_t(b)], r[i].box), grow(s.centres[size_t(b)], c), ++s.count[size_t(b)];
+    }
+}
+
+// The same, split into chunks over the thread pool for big ranges.
+bin_stats bin_all(const record* r, size_t n, const binner& which) {
+    bin_stats total;
+    if (n < parallel_bin_threshold) {
+        bin_range(r, n, which, total);
+        return total;
+    }
+    const int chunks = 4 * render_threads();
+    std::vector<bin_stats> part(static_cast<size_t>(chunks));
+    for_each_row(chunks, [&](int c) {
+        const size_t from = n * size_t(c) / size_t(chunks), to = n * size_t(c + 1) / size_t(chunks);
+        bin_range(r + from, to - from, which, part[size_t(c)]);
+    });
+    for (const auto& p : part) total.merge(p);
+    return total;
+}
+
+// The box and the centres' box of a range (used at the root, and after a
+// split that had to fall back to halving by count).
+void bounds_of(const record* r, size_t n, bvh_box& box, bvh_box& centres) {
+    box = empty_box(), centres = empty_box();
+    for (size_t i = 0; i < n; ++i) {
+        float c[3];
+        centre(r[i], c);
+        grow(box, r[i].box), grow(centres, c);
+    }
+}
+
+struct job {
+    size_t begin, end;
+    bvh_box box, centres;
+    std::uint32_t slot;  // the node this range becomes
+    size_t depth;
+};
+
+class builder {
+public:
+    builder(std::vector<record>& records, int max_leaf) : rec_(records), max_leaf_(size_t(max_leaf)) {}
+
+    // Builds j's subtree into `nodes` (j.slot already exists there). Ranges
+    // below `defer_below` objects (other than the root) are not built but
+    // appended to `deferred`.
+    void build(const job& root, std::vector<bvh_node>& nodes, size_t defer_below, std::vector<job>& deferred) {
+        std::vector<job> stack{root};
+        while (!stack.empty()) {
+            job j = stack.back();
+            stack.pop_back();
+            depth_ = std::max(depth_, j.depth);
+            const size_t n = j.end - j.begin;
+            if (n < defer_below && j.slot != root.slot) {
+                deferred.push_back(j);
+                continue;
+            }
+            nodes[j.slot].box = j.box;
+            job left, right;
+            if (!split(j, left, right)) {
+                nodes[j.slot].first = std::uint32_t(j.begin);
+                nodes[j.slot].count = std::uint32_t(n);
+                ++leaves_;
+                continue;
+            }
+            const auto first = std::uint32_t(nodes.size());
+            nodes[j.slot].first = first;
+            nodes[j.slot].count = 0;
+            nodes.emplace_back();
+            nodes.emplace_back();
+            left.slot = first, right.slot = first + 1;
+            left.depth = right.depth = j.depth + 1;
+            stack.push_back(right);
+            stack.push_back(left);
+        }
+    }
+
+    size_t leaves_ = 0, depth_ = 0;
+
+private:
+    std::vector<record>& rec_;
+    size_t max_leaf_;
+
+    // Splits j by the SAH; false when a leaf is cheaper (and allowed).
+    bool split(const job& j, job& left, job& right) {
+        const size_t n = j.end - j.begin;
+        // Below min_leaf objects a split never pays here: a packet's box
+        // test costs about what its test of a few objects costs, and every
+        // split adds two 32-byte nodes (48 million spheres in leaves of one
+        // would need 3 GB of nodes).
+        if (n <= min_leaf) return false;
+        int axis = 0;
+        for (int a = 1; a < 3; ++a)
+            if (j.centres.hi[a] - j.centres.lo[a] > j.centres.hi[axis] - j.centres.lo[axis]) axis = a;
+        const float extent = j.centres.hi[axis] - j.centres.lo[axis];
+        record* r = rec_.data() + j.begin;
+        if (!(extent > 0)) {  // all centres in one point: no split tells them apart
+            if (n <= max_leaf_) return false;
+            return halve(j, left, right);
+        }
+        const binner which{axis, j.centres.lo[axis], float(bins) * 0.99999f / extent};
+        const bin_stats s = bin_all(r, n, which);
+        // Sweep: the box and count left of each boundary, then right of it.
+        std::array<double, bins> left_cost{};
+        bvh_box b = empty_box();
+        size_t count = 0;
+        for (int i = 0; i < bins - 1; ++i) {
+            grow(b, s.box[size_t(i)]), count += s.count[size_t(i)];
+            left_cost[size_t(i)] = area(b) * double(count);
+        }
+        double best = std::numeric_limits<double>::infinity();
+        int best_split = -1;
+        b = empty_box(), count = 0;
+        for (int i = bins - 1; i > 0; --i) {
+            grow(b, s.box[size_t(i)]), count += s.count[size_t(i)];
+            const double cost = left_cost[size_t(i - 1)] + area(b) * double(count);
+            if (count < n && count > 0 && cost < best) best = cost, best_split = i;
+        }
+        const double parent = area(j.box);
+        const bool leaf_cheaper = !(parent > 0) || double(n) * parent <= parent + best;
+        if (n <= max_leaf_ && (best_split < 0 || leaf_cheaper)) return false;
+        if (best_split < 0) return halve(j, left, right);
+        record* mid = std::partition(r, r + n, [&](const record& x) { return which(x) < best_split; });
+        left = job{j.begin, j.begin + size_t(mid - r), empty_box(), empty_box(), 0, 0};
+        right = job{left.end, j.end, empty_box(), empty_box(), 0, 0};
+        for (int i = 0; i < bins; ++i) {
+            job& side = i < best_split ? left : right;
+            grow(side.box, s.box[size_t(i)]), grow(side.centres, s.centres[size_t(i)]);
+        }
+        return true;
+    }
+
+    // Half the objects each side (any half: their centres coincide).
+    bool halve(const job& j, job& left, job& right) {
+        record* r = rec_.data() + j.begin;
+        const size_t n = j.end - j.begin, half = n / 2;
+        std::nth_element(r, r + half, r + n, [](const record& a, const record& b) { return a.id < b.id; });
+        left = job{j.begin, j.begin + half, {}, {}, 0, 0};
+        right = job{j.begin + half, j.end, {}, {}, 0, 0};
+        bounds_of(rec_.data() + left.begin, half, left.box, left.centres);
+        bounds_of(rec_.data() + right.begin, n - half, right.box, right.centres);
+        return true;
+    }
+};
+
+}  // namespace
+
+bvh_tree build_bvh(const std::vector<bvh_box>& boxes, int max_leaf) {
+    stopwatch clock;
+    bvh_tree tree;
+    if (boxes.empty()) return tree;
+    std::vector<record> rec(boxes.size());
+    for (size_t i = 0; i < boxes.size(); ++i) rec[i] = {boxes[i], std::uint32_t(i), 0};
+
+    job root{0, rec.size(), {}, {}, 0, 0};
+    bounds_of(rec.data(), rec.size(), root.box, root.centres);
+    tree.nodes.reserve(2 * boxes.size() / size_t(std::max(1, max_leaf / 2)) + 1);
+    tree.nodes.emplace_back();
+
+    // The top of the tree, one node at a time with parallel binning; every
+    // range below task_size is left for the second phase.
+    builder top(rec, max_leaf);
+    std::vector<job> tasks;
+    top.build(root, tree.nodes, task_size, tasks);
+
+    // The subtrees, one task each, into their own node lists; then spliced
+    // in: a subtree's root replaces its slot, the rest are appended.
+    std::vector<std::vector<bvh_node>> parts(tasks.size());
+    std::vector<size_t> leaves(tasks.size()), depths(tasks.size());
+    for_each_row(int(tasks.size()), [&](int t) {
+        builder b(rec, max_leaf);
+        std::vector<job> none;
+        job j = tasks[size_t(t)];
+        j.slot = 0;
+        parts[size_t(t)].emplace_back();
+        b.build(j, parts[size_t(t)], 0, none);
+        leaves[size_t(t)] = b.leaves_, depths[size_t(t)] = tasks[size_t(t)].depth + b.depth_;
+    });
+    tree.leaves = top.leaves_, tree.depth = top.depth_;
+    for (size_t t = 0; t < tasks.size(); ++t) {
+        const auto& part = parts[t];
+        const auto base = std::uint32_t(tree.nodes.size() - 1);  // local node i >= 1 goes to base + i
+        for (size_t i = 0; i < part.size(); ++i) {
+            bvh_node n = part[i];
+            if (n.count == 0) n.first += base;
+            if (i == 0)
+                tree.nodes[tasks[t].slot] = n;
+            else
+                tree.nodes.push_back(n);
+        }
+        tree.leaves += leaves[t], tree.depth = std::max(tree.depth, depths[t]);
+        std::vector<bvh_node>().swap(parts[t]);
+    }
+    tree.order.resize(rec.size());
+    for (size_t i = 0; i < rec.size(); ++i) tree.order[i] = rec[i].id;
+    tree.build_seconds = clock.seconds();
+    return tree;
+}
+
+}  // namespace rt::render_tool
