@@ -22,6 +22,7 @@
 
 #include "common/render.hpp"
 #include "common/scene_file.hpp"
+#include "common/spd.hpp"
 #include "common/stub.hpp"
 #include "common/timing.hpp"
 
@@ -39,6 +40,9 @@
 #include <thread>
 #include <vector>
 
+#include <memory>
+
+#include <sys/resource.h>
 #include <time.h>
 
 using namespace rt;
@@ -144,17 +148,38 @@ public:
         device_ = rtcNewDevice("threads=2");
         scene_ = rtcNewScene(device_);
         rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-        RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-        float* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
-                                                               4 * sizeof(float), d.world.spheres.size()));
-        for (size_t i = 0; i < d.world.spheres.size(); ++i) {
-            const auto& s = d.world.spheres[i];
-            v[4 * i + 0] = float(s.center.x), v[4 * i + 1] = float(s.center.y), v[4 * i + 2] = float(s.center.z);
-            v[4 * i + 3] = float(s.radius);
+        if (!d.world.spheres.empty()) {
+            RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+            float* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
+                                                                   4 * sizeof(float), d.world.spheres.size()));
+            for (size_t i = 0; i < d.world.spheres.size(); ++i) {
+                const auto& s = d.world.spheres[i];
+                v[4 * i + 0] = float(s.center.x), v[4 * i + 1] = float(s.center.y), v[4 * i + 2] = float(s.center.z);
+                v[4 * i + 3] = float(s.radius);
+            }
+            rtcCommitGeometry(g);
+            rtcAttachGeometry(scene_, g);
+            rtcReleaseGeometry(g);
         }
-        rtcCommitGeometry(g);
-        rtcAttachGeometry(scene_, g);
-        rtcReleaseGeometry(g);
+        if (!d.world.triangles.empty()) {  // an unshared vertex triple per triangle, as the scene holds them
+            const size_t n = d.world.triangles.size();
+            RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+            float* v = static_cast<float*>(
+                rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n));
+            unsigned* index = static_cast<unsigned*>(
+                rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
+            for (size_t i = 0; i < n; ++i) {
+                const auto& t = d.world.triangles[i];
+                const vec3d corners[3] = {t.a, t.b, t.c};
+                for (size_t c = 0; c < 3; ++c) {
+                    for (int a = 0; a < 3; ++a) v[9 * i + 3 * c + size_t(a)] = float(corners[c][a]);
+                    index[3 * i + c] = unsigned(3 * i + c);
+                }
+            }
+            rtcCommitGeometry(g);
+            rtcAttachGeometry(scene_, g);
+            rtcReleaseGeometry(g);
+        }
         stopwatch sw;
         rtcCommitScene(scene_);
         build_seconds = sw.seconds();
@@ -346,6 +371,129 @@ void pixel_table(const std::vector<int>& sizes) {
     }
 }
 
+double peak_rss_gb() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_maxrss) / (1024.0 * 1024.0);  // ru_maxrss is in KiB on Linux
+}
+
+// The camera the scene file describes, in float, for Embree's rays.
+pinhole_camera<float> float_camera(const scene_description& d, int size) {
+    return pinhole_camera<float>(camera_frame<float>::look_at(convert<float>(d.camera.eye), convert<float>(d.camera.look_at),
+                                                              convert<float>(d.camera.up)),
+                                 float(d.camera.fov_degrees), size, size);
+}
+
+// Our tree against Embree's on one scene: build, then primary hits only.
+// Our traced time is a run with the tree (build + trace) minus a build on
+// its own; both CPU time per thread, best of `runs`.
+void tree_row(const char* name, const scene_description& d, int size) {
+    scene_plan plan = make_plan(d, 1e-3, std::nullopt);
+    plan.tree = true;
+    const double objects = double(d.world.spheres.size() + d.world.triangles.size());
+    const double rays = double(size) * double(size);
+    tree_figures tf;
+    const double build = best_seconds([&] { tf = build_trees_only(d); }, runs);
+    long ours_hits = 0;
+    const double total = best_seconds([&] { ours_hits = count_primary_hits(d, plan, size, size); }, runs);
+    const double trace = std::max(total - build, 1e-9);
+    std::printf("   %-22s | %10.0f | %9.1f | %8.1f | %9.1f | %7.0f", name, objects, build * 1e3,
+                build * 1e3 / (objects / 1e6), rays / trace / 1e6, trace / rays * 1e9 * render_threads());
+#ifdef RT_HAVE_EMBREE
+    if (embree_scene::spheres_supported()) {
+        std::unique_ptr<embree_scene> e;
+        const double ebuild = best_seconds([&] { e.reset(), e = std::make_unique<embree_scene>(d); }, 1);
+        const pinhole_camera<float> cam = float_camera(d, size);
+        long hits1 = 0, hits16 = 0;
+        const double single = best_seconds([&] { hits1 = e->single(cam); }, runs);
+        const double packets = best_seconds([&] { hits16 = e->packets16(cam); }, runs);
+        std::printf(" | %9.1f | %8.1f | %8.1f | %7.0f | %6.2fx | %6.2fx | %ld/%ld/%ld", ebuild * 1e3, rays / single / 1e6,
+                    rays / packets / 1e6, single / rays * 1e9 * render_threads(), single / trace, packets / trace,
+                    ours_hits, hits1, hits16);
+    }
+#endif
+    std::printf(" | %.1f MB, depth %zu\n", double(tf.bytes) / 1e6, tf.depth);
+    std::fflush(stdout);
+}
+
+void tree_header(const char* title, int size) {
+    std::printf("\n%s, %dx%d, primary hits only (closest hit, no shading)\n", title, size, size);
+    std::printf("   %-22s | %10s | %9s | %8s | %9s | %7s", "scene", "objects", "build ms", "ms/Mobj", "Mrays/s",
+                "ns/ray");
+#ifdef RT_HAVE_EMBREE
+    std::printf(" | %9s | %8s | %8s | %7s | %7s | %7s | %s", "E build", "E1 Mr/s", "E16 Mr/s", "E1 ns", "ours/E1",
+                "ours/E16", "hits ours/E1/E16");
+#endif
+    std::printf(" | tree\n");
+    std::printf("   (ns/ray: time per ray on one thread; ours/E1 > 1 means faster than Embree's rtcIntersect1)\n");
+}
+
+void tree_table(const std::vector<int>& counts, int size) {
+    tree_header("4. BVH against Embree on N random spheres", size);
+    for (int n : counts) tree_row(("N = " + std::to_string(n)).c_str(), sphere_scene(n, size), size);
+}
+
+// A scene file's shapes made by an SPD generator, with the camera given.
+scene_description generated_scene(spd_database db, int level, const vec3d& eye, const vec3d& at, int size,
+                                  double& generation_seconds) {
+    scene_description d;
+    d.source = spd_name(db);
+    d.camera.eye = eye, d.camera.look_at = at, d.camera.up = {0, 0, 1};
+    d.camera.width = d.camera.height = size;
+    d.world.materials = {material{color(0.75f, 0.75f, 0.7f), color(0), 32, true, color(0.35f, 0.35f, 0.4f)},
+                         material{color(0.8f, 0.55f, 0.45f), color(0.6f), 60}};
+    d.material_names = {"", ""};
+    d.world.lights.push_back({vec3d(4, 3, 2), color(30, 30, 28)});
+    const double cpu0 = process_cpu_seconds();
+    spd_generate(db, level, d.world, {0, 1});
+    generation_seconds = process_cpu_seconds() - cpu0;
+    return d;
+}
+
+void big_scenes(int size, bool flake) {
+    double generation = 0;
+    {
+        const scene_description mesh = generated_scene(spd_database::tetra, 10, {3.2, -4.8, 2.4}, {0, 0, 0}, size,
+                                                       generation);
+        tree_header("5. a 1M-triangle mesh: SPD tetra size 10", size);
+        tree_row("tetra 10", mesh, size);
+    }
+    if (!flake) return;
+    const int fsize = 1024;
+    const scene_description d = generated_scene(spd_database::balls, 8, {2.1, 1.3, 1.7}, {0, 0, 0}, fsize, generation);
+    std::printf("\n6. the sphereflake, SPD balls size 8: %zu spheres and a ground plane, %dx%d, one light with shadows\n",
+                d.world.spheres.size(), fsize, fsize);
+    std::printf("   generation: %.2f s CPU (one thread)\n", generation);
+    const scene_plan plan = make_plan(d, 1e-3, std::nullopt);
+    std::printf("   %s\n", plan.describe().c_str());
+    tree_figures tf;
+    const double build = best_seconds([&] { tf = build_trees_only(d); }, 1);
+    long rays = 0;
+    const double total = best_seconds([&] { render_fast(d, plan, fsize, fsize, rays); }, 1);
+    std::printf("   ours: tree build %.2f s (CPU per thread; %.1f MB, depth %zu), render with shading and shadows %.2f s, "
+                "%ld rays, %.2f Mrays/s; peak memory so far %.2f GB\n",
+                build, double(tf.bytes) / 1e6, tf.depth, total - build, rays, double(rays) / (total - build) / 1e6,
+                peak_rss_gb());
+    std::fflush(stdout);
+#ifdef RT_HAVE_EMBREE
+    if (embree_scene::spheres_supported()) {
+        std::unique_ptr<embree_scene> e;
+        const double ebuild = best_seconds([&] { e = std::make_unique<embree_scene>(d); }, 1);
+        const pinhole_camera<float> cam = float_camera(d, fsize);
+        long hits1 = 0, hits16 = 0, ours_hits = 0;
+        const double single = best_seconds([&] { hits1 = e->single(cam); }, 1);
+        const double packets = best_seconds([&] { hits16 = e->packets16(cam); }, 1);
+        const double ours_total = best_seconds([&] { ours_hits = count_primary_hits(d, plan, fsize, fsize); }, 1);
+        const double px = double(fsize) * fsize, ours_trace = ours_total - build;
+        std::printf("   Embree (spheres only: no infinite plane in Embree): build %.2f s, primary rays %.2f Mrays/s "
+                    "(rtcIntersect1), %.2f Mrays/s (rtcIntersect16); ours on the same primary rays %.2f Mrays/s "
+                    "(%s); hits ours/E1/E16 %ld/%ld/%ld; peak memory %.2f GB\n",
+                    ebuild, px / single / 1e6, px / packets / 1e6, px / ours_trace / 1e6,
+                    plan.prec == precision::single ? "float" : "double", ours_hits, hits1, hits16, peak_rss_gb());
+    }
+#endif
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -356,6 +504,8 @@ int main(int argc, char** argv) {
     app.add_option("--runs", runs, "runs per figure (the median is printed)")->check(CLI::Range(1, 50))->capture_default_str();
     app.add_flag("--wall", wall_clock, "wall-clock time instead of CPU time per thread");
     app.add_option("--size", size, "image side in pixels")->check(CLI::Range(8, 4096))->capture_default_str();
+    bool no_flake = false;
+    app.add_flag("--no-flake", no_flake, "leave out the 48-million-sphere sphereflake (section 6)");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -363,11 +513,13 @@ int main(int argc, char** argv) {
     }
     std::vector<int> counts = {1, 4, 16, 64, 256, 1024, 4096};  // 1024: to place the crossover with Embree
     std::vector<int> sizes = {128, 256, 512, 1024};
+    std::vector<int> tree_counts = {4096, 16384, 65536, 262144, 1048576};
     if (quick) {
         size = 64;
         runs = 1;
         counts = {1, 16};
         sizes = {32, 64};
+        tree_counts = {4096};
     }
     std::printf("rt-bench: %dx%d, one primary ray per pixel, %d threads, best of %d run(s), %s\n", size, size,
                 render_threads(), runs,
@@ -376,6 +528,8 @@ int main(int argc, char** argv) {
         sphere_table(counts, size);
         feature_table(size);
         pixel_table(sizes);
+        tree_table(tree_counts, size);
+        if (!quick) big_scenes(size, !no_flake);
     } catch (const not_implemented& e) {
         std::fprintf(stderr, "rt-bench: %s\n", e.what());
         return exit_not_implemented;

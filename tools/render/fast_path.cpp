@@ -45,7 +45,28 @@
 #include <string>
 #include <type_traits>
 
-namespace rt::render_tool {
+// Run-time dispatch. This file is compiled three times (tools/render/
+// CMakeLists.txt): plain x86-64, AVX2 + FMA, and AVX-512, each time in its
+// own namespace (RT_FAST_ISA), and fast_path_dispatch.cpp picks one at
+// start-up from what the CPU has. The instruction set is switched on here,
+// *after* every header, with a pragma rather than with -mavx2 on the
+// command line: the headers' inline functions (std::vector, glm, ...) are
+// then compiled for plain x86-64 in every copy, so whichever copy the
+// linker keeps is safe on any CPU; only this file's own kernels (templates
+// in an anonymous namespace, private to each copy) use the wide units.
+// Contraction is off for the whole project and FMA appears only where the
+// code writes std::fma (exactly rounded on every path, in hardware or not),
+// so all three copies give the same bits.
+#ifndef RT_FAST_ISA
+#define RT_FAST_ISA isa_baseline
+#endif
+#if defined(RT_FAST_AVX512)
+#pragma GCC target("avx512f,avx512vl,avx512bw,avx512dq,avx2,fma,bmi,bmi2,lzcnt,popcnt")
+#elif defined(RT_FAST_AVX2)
+#pragma GCC target("avx2,fma,bmi,bmi2,lzcnt,popcnt")
+#endif
+
+namespace rt::render_tool::RT_FAST_ISA {
 
 namespace {
 
@@ -768,6 +789,16 @@ long count_primary_hits(const scene_description& d, const scene_plan& plan, int 
     return plan.prec == precision::single ? run(float{}) : run(double{});
 }
 
+tree_figures build_trees_only(const scene_description& d) {
+    const soa_scene<float> soa(d.world, true, context<float>::magnitude(d));
+    tree_figures f;
+    f.build_seconds = soa.sphere_tree.build_seconds + soa.triangle_tree.build_seconds;
+    f.bytes = soa.sphere_tree.bytes() + soa.triangle_tree.bytes();
+    f.leaves = soa.sphere_tree.leaves + soa.triangle_tree.leaves;
+    f.depth = std::max(soa.sphere_tree.depth, soa.triangle_tree.depth);
+    return f;
+}
+
 primary_hits trace_primary_reference(const scene_description& d, int width, int height) {
     const bool spheres = !d.world.spheres.empty();
     return dispatch(spheres ? sphere_mode::robust : sphere_mode::none, !d.world.planes.empty(),
@@ -777,4 +808,4 @@ primary_hits trace_primary_reference(const scene_description& d, int width, int 
                     });
 }
 
-}  // namespace rt::render_tool
+}  // namespace rt::render_tool::RT_FAST_ISA

@@ -1,9 +1,9 @@
 // fast_path.hpp — the specialised renderer: brute force over
-// structure-of-arrays data, eight rays at a time, compiled for exactly what
-// the scene needs.
+// structure-of-arrays data, 32 rays (an 8 x 4 tile) at a time, a BVH from a few
+// hundred objects on, compiled for exactly what the scene needs.
 //
 // This is the instructor-side renderer. Its intersection formulas are
-// written for speed (eight rays per loop so the compiler can put one ray
+// written for speed (32 rays per loop so the compiler can put one ray
 // in each lane of a vector register), not for teaching; the course's
 // formulas are the chapters' exercises, which the general path
 // (general_path.hpp) calls.
@@ -41,6 +41,20 @@ primary_hits trace_primary_reference(const scene_description& scene, int width, 
 // something. The benchmark's measure of raw intersection throughput (the
 // same work Embree's rtcIntersect does).
 long count_primary_hits(const scene_description& scene, const scene_plan& plan, int width, int height);
+
+// What building the scene's trees costs, apart from tracing: the boxes,
+// the trees and the objects' float arrays in leaf order, as the specialised
+// path would make them (rt-bench subtracts this from a traced run).
+struct tree_figures {
+    double build_seconds = 0;  // wall clock, inside the build
+    size_t bytes = 0, leaves = 0, depth = 0;
+};
+tree_figures build_trees_only(const scene_description& scene);
+
+// Which copy of the specialised path runs: "baseline" (any x86-64),
+// "avx2" (AVX2 + FMA) or "avx512", chosen at start-up from the CPU (the
+// environment variable RT_ISA forces one; see fast_path_dispatch.cpp).
+const char* fast_path_isa();
 
 // Rays per packet: a tile of 8 x 4 pixels. Four AVX2 registers of floats
 // per quantity: the cost of fetching a sphere and deciding whether to skip

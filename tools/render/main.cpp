@@ -122,9 +122,10 @@ int main(int argc, char** argv) {
         std::filesystem::path path(out);
         if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
         write_png(img, out);
-        std::printf("rendered %s: %dx%d, %s path, %.1f ms, %ld rays (%ld primary), %.1f Mrays/s -> %s\n",
-                    scene_path.c_str(), w, h, general ? "general" : "specialised", seconds * 1e3, rays,
-                    long(w) * long(h), double(rays) / seconds / 1e6, out.c_str());
+        std::printf("rendered %s: %dx%d, %s path%s%s, %.1f ms, %ld rays (%ld primary), %.1f Mrays/s -> %s\n",
+                    scene_path.c_str(), w, h, general ? "general" : "specialised", general ? "" : " on ",
+                    general ? "" : fast_path_isa(), seconds * 1e3, rays, long(w) * long(h),
+                    double(rays) / seconds / 1e6, out.c_str());
         if (error) report_error(scene, plan, w, h);
         return 0;
     } catch (const scene_error& e) {
