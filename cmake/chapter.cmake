@@ -33,6 +33,7 @@
 option(RT_DISCOVER_TESTS "register one ctest test per doctest case (runs each test executable once at build time)" ON)
 set(RT_STUB_CHECK_SCRIPT "${CMAKE_CURRENT_LIST_DIR}/expect_polite_failure.cmake")
 include(doctest)  # doctest_discover_tests, shipped by doctest-dev
+include("${CMAKE_CURRENT_LIST_DIR}/judge.cmake")  # rt_chapter_judge(): the autograder's judges and runner
 
 function(rt_chapter_side number out_side)
   set(side "${RT_SIDE}")
@@ -247,6 +248,8 @@ function(rt_chapter number)
              COMMAND ${id} --out "${PROJECT_BINARY_DIR}/render/${id}.png" --compare "${chapter_dir}/reference.png")
     set_tests_properties(${id}.render PROPERTIES LABELS "${id};render" TIMEOUT 120)
   endif()
+
+  rt_chapter_judge(${id} "${chapter_dir}" "${CH_DEPENDS}" "${dependency_libs}")
 
   rt_chapter_description(${id} "${number}" "${folder}" "${CH_TITLE}" "${chapter_dir}" "${side}"
                          "${CH_EXERCISES}" "${CH_DEPENDS}")

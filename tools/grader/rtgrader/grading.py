@@ -2,12 +2,9 @@
 into the instructor's test executables, run every test case in its own
 limited process, render each chapter's picture, and score the lot."""
 
-import fcntl
 import os
 import queue
 import re
-import secrets
-import select
 import shutil
 import stat
 import tempfile
@@ -16,7 +13,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
-from . import fsutil, isolation, manifest, sandbox, tree
+from . import fsutil, isolation, judge, manifest, sandbox, tree
 from .sandbox import MiB, Limits
 
 MAX_SOURCE_BYTES = 1 * MiB
@@ -51,11 +48,6 @@ class TestResult:
     output: str
     points: float = 0
     visibility: str = "visible"
-
-
-def escape_filter(case):
-    # doctest reads ',' as "or" in a filter: escape it.
-    return case.replace("\\", "\\\\").replace(",", "\\,")
 
 
 def find_exercise(submission, ch, ex):
@@ -266,37 +258,33 @@ class Grader:
         return trim(text, COMPILER_SHOWN)
 
     def _take_executables(self, ch, folder):
-        """Copies the freshly linked executables out of the build tree, into a
-        folder the submission's user cannot write: a test must not be able to
-        swap the next test's program for one that forges its report."""
+        """Copies the freshly linked runner and program out of the build tree, into a
+        folder the submission's user cannot write (a run must not be able to swap the
+        next run's program). The judges stay in the build tree: they hold no student code."""
         make_dir(os.path.dirname(folder), None, 0o711)
         make_dir(folder, None, 0o711)
-        wanted = {"public_tests": 0o755, "hidden_tests": 0o711, "program": 0o755}
-        for key, mode in wanted.items():
+        for key in ("runner", "program"):
             if ch.get(key):
                 dst = os.path.join(folder, key)
                 shutil.copyfile(ch[key], dst)
-                os.chmod(dst, mode)
+                os.chmod(dst, 0o755)
 
     # --- running ------------------------------------------------------------------------
     def _run_chapter(self, ch, folder, logs, out_dir, user):
         results = []
         chapter_end = time.monotonic() + self.options.chapter_seconds
         timeouts = 0
-        for kind in ("public", "hidden"):
-            cases = [n for n in self._names_of(ch["id"]) if n[1] == kind]
-            if not cases:
+        runner = os.path.join(os.path.dirname(folder), "bin", ch["id"], "runner")
+        cases = [n for n in self._names_of(ch["id"]) if n[1] in ("public", "hidden")]
+        probe = self._probe(runner, logs, user) if cases else ""
+        for name, kind, cid, case in cases:
+            skip = self._over_budget(chapter_end, timeouts)
+            if probe or skip:
+                results.append(self._result(name, kind, cid, False, probe or skip))
                 continue
-            exe = os.path.join(os.path.dirname(folder), "bin", ch["id"], f"{kind}_tests")
-            probe = self._probe(exe, folder, logs, user)
-            for name, _, cid, case in cases:
-                skip = self._over_budget(chapter_end, timeouts)
-                if probe or skip:
-                    results.append(self._result(name, kind, cid, False, probe or skip))
-                    continue
-                passed, output, timed_out = self._run_case(exe, case, kind, folder, logs, user)
-                timeouts += timed_out
-                results.append(self._result(name, kind, cid, passed, output))
+            passed, output, timed_out = self._run_case(ch[f"{kind}_judge"], runner, case, kind, logs, user)
+            timeouts += timed_out
+            results.append(self._result(name, kind, cid, passed, output))
         if ch.get("reference") and any(n[1] == "render" for n in self._names_of(ch["id"])):
             passed, output = self._render(ch, folder, logs, out_dir, user)
             results.append(self._result(f"{ch['id']}.render", "render", ch["id"], passed, output))
@@ -314,45 +302,28 @@ class Grader:
             return f"not run: the submission's tests used their time budget ({self.options.submission_seconds:g} s)"
         return ""
 
-    def _probe(self, exe, folder, logs, user):
-        """'' if the test program starts and lists its cases, else why not (every case then fails)."""
-        limits = self.options.limits
-        outcome = sandbox.run([exe, "--list-test-cases", "--no-version"], limits=limits,
-                              log_path=os.path.join(logs, "probe"), user=user, inputs=[exe], private_root=self._per.work)
-        if outcome.returncode == 0 and not outcome.timed_out:
-            return ""
-        how = sandbox.describe_ending(outcome, limits) or f"exited with status {outcome.returncode}"
-        return (f"the test program did not start: it {how} before any test ran "
-                "(look at your file's global variables and static initialisers)")
+    def _run_runner(self, argv, log_path, user, env_extra=None, pass_fds=()):
+        """Runs the student's runner in the sandbox (it reads only itself, writes only a private /tmp)."""
+        return sandbox.run(argv, limits=self.options.limits, log_path=log_path, user=user, inputs=[argv[0]],
+                           env_extra=env_extra, pass_fds=pass_fds, private_root=self._per.work)
 
-    def _run_case(self, exe, case, kind, folder, logs, user):
+    def _probe(self, runner, logs, user):
+        """'' if the student's code starts (its static initialisers end), else why not (every case then fails)."""
+        return judge.probe(lambda argv: self._run_runner(argv, os.path.join(logs, "probe"), user), runner,
+                           self.options.limits)
+
+    def _run_case(self, judge_exe, runner, case, kind, logs, user):
         limits = self.options.limits
-        nonce = secrets.token_hex(16)
-        nonce_read, nonce_write = os.pipe()
-        os.write(nonce_write, nonce.encode())
-        os.close(nonce_write)
-        report_read, report_write = os.pipe()
-        try:
-            env = {"RT_GRADER_NONCE_FD": str(nonce_read), "RT_GRADER_REPORT_FD": str(report_write)}
-            outcome = sandbox.run([exe, f"--test-case={escape_filter(case)}", "--no-version"], limits=limits,
-                                  log_path=os.path.join(logs, "case"), user=user, inputs=[exe], env_extra=env,
-                                  pass_fds=(nonce_read, report_write), private_root=self._per.work)
-            os.close(nonce_read)
-            os.close(report_write)
-            nonce_read = report_write = None
-            report = _read_report(report_read)
-        finally:
-            for fd in (nonce_read, report_write, report_read):
-                if fd is not None:
-                    os.close(fd)
-        verdict, reason = _decide(outcome, report, nonce, limits)
-        output = _clean_doctest_output(outcome.output)
+        found = judge.run_case(judge_exe, runner, case, limits, self._per.work,
+                               lambda argv, env, fds: self._run_runner(argv, os.path.join(logs, "runner"), user,
+                                                                       env, fds))
+        output = _clean_doctest_output(found.judge_output)
         if kind == "hidden":
             output = _hidden_feedback(output)
-        if outcome.output_truncated:
-            output += "\n(output cut: only the start is kept)"
-        text = (reason + "\n" if reason else "") + trim(output, OUTPUT_SHOWN)
-        return verdict, text.strip() or ("passed" if verdict else "failed"), outcome.timed_out
+        ending = "" if found.passed else judge.runner_ending(found.runner, limits)
+        text = "\n".join(t for t in (found.reason, ending, trim(output, OUTPUT_SHOWN)) if t)
+        timed_out = found.timed_out or bool(found.runner and found.runner.timed_out)
+        return found.passed, text.strip() or ("passed" if found.passed else "failed"), timed_out
 
     def _render(self, ch, folder, logs, out_dir, user):
         limits = self.options.limits
@@ -419,45 +390,6 @@ class Grader:
 
     def _compilation_entry(self, cid, message):
         return TestResult(f"{cid} compilation", "compilation", cid, False, message, 0, "visible")
-
-
-def _read_report(fd):
-    """The line the test main wrote on the result channel ('' if none)."""
-    flags = fcntl.fcntl(fd, fcntl.F_GETFL)
-    fcntl.fcntl(fd, fcntl.F_SETFL, flags | os.O_NONBLOCK)
-    data = b""
-    while len(data) < 4096:
-        ready, _, _ = select.select([fd], [], [], 0.5)
-        if not ready:
-            break
-        try:
-            chunk = os.read(fd, 4096)
-        except BlockingIOError:
-            break
-        if not chunk:
-            break
-        data += chunk
-    return data.decode("ascii", errors="replace")
-
-
-def _decide(outcome, report, nonce, limits):
-    """Pass or fail, from the exit status and the result channel only (never from stdout)."""
-    how = sandbox.describe_ending(outcome, limits)
-    if how:
-        return False, f"The test process {how}."
-    fields = report.split()
-    genuine = len(fields) == 5 and fields[0] == nonce and all(f.isdigit() for f in fields[1:])
-    if not genuine:
-        if outcome.returncode == 0:
-            return False, ("The test process ended before the test finished (exit() called, or output that "
-                           "imitates the test framework): it does not count as passed.")
-        return False, f"The test process exited with status {outcome.returncode} before the test finished."
-    cases, failed, _, asserts_failed = (int(f) for f in fields[1:])
-    if cases != 1:
-        return False, f"Grader problem: {cases} test cases matched this name (tell your instructor)."
-    if failed or asserts_failed or outcome.returncode != 0:
-        return False, ""
-    return True, ""
 
 
 _NOISE = re.compile(r"^(\[doctest\] .*|={20,})$\n?", re.M)

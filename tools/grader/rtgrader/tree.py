@@ -23,9 +23,11 @@ import filecmp
 import glob
 import json
 import os
+import re
 import shlex
 import shutil
 import subprocess
+import time
 from contextlib import contextmanager
 
 from . import fsutil, sandbox
@@ -51,10 +53,11 @@ def _skipped(rel):
     return top in SKIP_AT_TOP or top.startswith("build") or "__pycache__" in rel.split(os.sep)
 
 
-def sync_source(repo, dest, grading_folder=None):
-    """Makes dest a copy of repo; returns how many files changed."""
+def sync_source(repo, dest, grading_folder=None, keep=()):
+    """Makes dest a copy of repo, except the files in keep (paths relative to
+    dest, left as they are); returns how many files changed."""
     changed = 0
-    wanted = set()
+    wanted = set(keep)
     for dirpath, dirnames, filenames in os.walk(repo):
         rel_dir = os.path.relpath(dirpath, repo)
         dirnames[:] = [d for d in dirnames if not _skipped(os.path.normpath(os.path.join(rel_dir, d)))
@@ -62,7 +65,7 @@ def sync_source(repo, dest, grading_folder=None):
         for name in filenames:
             rel = os.path.normpath(os.path.join(rel_dir, name))
             src = os.path.join(dirpath, name)
-            if _skipped(rel) or not os.path.isfile(src) or os.path.islink(src):
+            if _skipped(rel) or not os.path.isfile(src) or os.path.islink(src) or rel in keep:
                 continue
             wanted.add(rel)
             dst = os.path.join(dest, rel)
@@ -135,14 +138,15 @@ class Tree:
         for the chapters wanted (two-digit numbers; None: all) when needed."""
         with locked(self.folder):
             os.makedirs(self.source, exist_ok=True)
-            changed = sync_source(self.repo, self.source, self.folder)
-            if sandbox.is_root():
-                protect(self.folder)
-                protect_repository(self.repo)
             old = None
             if os.path.isfile(self.state_path):
                 with open(self.state_path) as f:
                     old = json.load(f)
+            keep = self._placeholder_paths(old) if self.is_kit else set()
+            changed = sync_source(self.repo, self.source, self.folder, keep)
+            if sandbox.is_root():
+                protect(self.folder)
+                protect_repository(self.repo)
             if changed == 0 and old is not None:
                 if wanted is None:
                     wanted = [ch["number"] for ch in old["chapters"].values()]
@@ -153,6 +157,8 @@ class Tree:
             self._restore_stubs(old)
             self._configure()
             chapters = self._chapters()
+            if self.is_kit:
+                self._write_placeholders(chapters)
             numbers = [ch["number"] for ch in chapters.values()]
             if wanted is None:
                 wanted = numbers
@@ -164,23 +170,50 @@ class Tree:
             targets = ["imgcmp"]
             for ch in chapters.values():
                 if ch["number"] in built:
-                    targets += ch["targets"]
-            result = subprocess.run(["ninja", "-C", self.build, f"-j{jobs}"] + targets,
-                                    capture_output=True, text=True)
-            if result.returncode != 0:
-                raise SystemExit("grader: the instructor tree does not build:\n" + result.stdout[-4000:]
-                                 + result.stderr[-2000:])
+                    targets += ch["targets"] + ch["judge_targets"]
+            returncode, output = build_with_progress(self.build, jobs, targets, log)
+            if returncode != 0:
+                raise SystemExit("grader: the instructor tree does not build:\n" + output[-6000:])
             for ch in chapters.values():
                 ch["built"] = ch["number"] in built
                 if ch["built"]:
                     self._save_stub(ch)
-                    ch["tests"] = {kind: list_test_cases(ch[f"{kind}_tests"])
-                                   for kind in ("public", "hidden") if ch.get(f"{kind}_tests")}
+                    ch["tests"] = {kind: list_test_cases(ch[f"{kind}_judge"])
+                                   for kind in ("public", "hidden") if ch.get(f"{kind}_judge")}
             self.state = {"chapters": chapters, "built": built, "has_solutions": self.has_solutions}
             with open(self.state_path, "w") as f:
                 json.dump(self.state, f, indent=1)
             if sandbox.is_root():
                 protect(self.folder)
+
+    @property
+    def is_kit(self):
+        """A student kit: no solutions, and the exercise files are the student's own."""
+        return not os.path.isdir(os.path.join(self.repo, "solutions"))
+
+    def _placeholder_paths(self, state):
+        if not state:
+            return set()
+        return {os.path.relpath(os.path.join(ch["chapter_dir"], ex), self.source)
+                for ch in state["chapters"].values() for ex in ch["exercises"]}
+
+    def _write_placeholders(self, chapters):
+        """In a kit, the tree is built with placeholders instead of the student's
+        exercise files (made from the chapter's RPC table, every function throws):
+        one broken file must not stop the tree from building, and the tree never
+        compiles student code outside the sandbox. Each submission's own files
+        are then compiled and linked chapter by chapter, as on the instructor side."""
+        for ch in chapters.values():
+            for i, ex in enumerate(ch["exercises"]):
+                text = ("// Written by the grader (tools/grader/rtgrader/tree.py): a stand-in for the student's file.\n"
+                        + ("#define RT_RPC_PLACEHOLDER\n"
+                           f"#include \"tests/support/rpc/{ch['id']}.cpp\"\n" if i == 0 else ""))
+                path = os.path.join(ch["chapter_dir"], ex)
+                with open(path) as f:
+                    if f.read() == text:
+                        continue
+                with open(path, "w") as f:
+                    f.write(text)
 
     def _configure(self):
         cmd = ["cmake", "-S", self.source, "-B", self.build, "-G", "Ninja",
@@ -207,8 +240,17 @@ class Tree:
                 args = shlex.split(entry["command"])
                 obj = args[args.index("-o") + 1]
                 ch["compile"][ex] = {"args": args, "object": os.path.join(entry["directory"], obj)}
-            ch["targets"] = [f"{ch['id']}_{kind}_tests" for kind in ("public", "hidden")
-                             if ch.get(f"{kind}_tests")] + [ch["id"]]
+            judges = os.path.join(self.build, "rt_judges", ch["id"] + ".json")
+            if not os.path.isfile(judges):
+                raise SystemExit(f"grader: chapter {ch['id']} has no judge (write tests/support/rpc/{ch['id']}.cpp, "
+                                 "see cmake/judge.cmake)")
+            with open(judges) as f:
+                ch.update(json.load(f))
+            # Linked again for each submission: the runner and the program hold the student's code.
+            ch["targets"] = [f"{ch['id']}_runner", ch["id"]]
+            # Built once: the judges hold the tests and no student code.
+            ch["judge_targets"] = [f"{ch['id']}_{kind}_judge" for kind in ("public", "hidden")
+                                   if ch.get(f"{kind}_judge")]
             chapters[ch["id"]] = ch
         return chapters
 
@@ -258,6 +300,29 @@ class Tree:
                                     capture_output=True, text=True)
             errors[cid] = "" if result.returncode == 0 else (result.stdout + result.stderr)
         return errors
+
+
+_NINJA_STEP = re.compile(r"^\[(\d+)/(\d+)\]")
+
+
+def build_with_progress(build, jobs, targets, log, every_seconds=5.0):
+    """Runs ninja, telling how many build steps are done out of how many (the
+    first preparation takes minutes on a busy machine: it must not look hung).
+    Returns (exit status, ninja's output)."""
+    started = time.monotonic()
+    proc = subprocess.Popen(["ninja", "-C", build, f"-j{jobs}"] + targets, stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, text=True, bufsize=1)
+    lines = []
+    last_told = started
+    for line in proc.stdout:
+        lines.append(line)
+        step = _NINJA_STEP.match(line)
+        now = time.monotonic()
+        if step and (now - last_told >= every_seconds or step.group(1) == step.group(2)):
+            log(f"grader: preparing: {step.group(1)}/{step.group(2)} build steps done ({now - started:.0f} s)")
+            last_told = now
+    proc.wait()
+    return proc.returncode, "".join(lines[-200:])
 
 
 def list_test_cases(executable):

@@ -1,0 +1,66 @@
+// channel.hpp — the messages between the judge and the runner, and the exceptions that cross.
+//
+// One call: the judge sends `call` (the function's name and its arguments); the runner runs the student's
+// function and sends `answer` (the result) or `threw` (the exception). While a call is outstanding the
+// runner may send `call_back` (a callback argument called by the student's code, e.g. chapter 03's
+// intersector); the judge runs it and sends `call_back_answer` or `threw`, and keeps waiting.
+#pragma once
+
+#include "wire.hpp"
+
+#include <functional>
+#include <string>
+
+namespace rt::rpc {
+
+// --- messages -------------------------------------------------------------------------------------------
+// Every message is a kind byte and its bytes, framed by a 32-bit length (channel.cpp).
+enum class kind : std::uint8_t {
+    call = 1,             // judge -> runner: function name, arguments
+    answer = 2,           // runner -> judge: the result
+    threw = 3,            // either way: exception kind, message
+    call_back = 4,        // runner -> judge: callback number, arguments
+    call_back_answer = 5  // judge -> runner: the callback's result
+};
+
+// The exceptions that cross: tests check some of their types (std::invalid_argument for bad input).
+enum class exception_kind : std::uint8_t {
+    not_implemented = 1,
+    invalid_argument = 2,
+    domain_error = 3,
+    out_of_range = 4,
+    logic_error = 5,
+    runtime_error = 6,
+    other = 7,
+};
+
+struct message {
+    kind what{};
+    std::string bytes;
+};
+
+class channel {
+public:
+    explicit channel(int fd) : fd_(fd) {}
+    void send(kind what, const std::string& bytes);
+    message receive();  // throws protocol_error when the other side is gone or sends garbage
+    int fd() const { return fd_; }
+
+private:
+    int fd_;
+};
+
+// Messages larger than this are refused: a runner cannot make the judge allocate without end.
+inline constexpr std::uint32_t max_message_bytes = 64u << 20;
+
+
+// The exception being handled (call inside a catch block), as the bytes of a `threw` message.
+std::string describe_current_exception();
+
+// Throws the exception a `threw` message describes, with the same standard type, so a test's
+// catch (const std::invalid_argument&) still works. retell(kind, text) may replace the text
+// (the judge never shows a student's own words in hidden feedback).
+[[noreturn]] void throw_described(const std::string& bytes,
+                                  const std::function<std::string(exception_kind, const std::string&)>& retell);
+
+}  // namespace rt::rpc

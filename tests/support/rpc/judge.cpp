@@ -1,0 +1,142 @@
+// judge.cpp — the judge's connection to the runner.
+//
+// The grader starts the runner (in its sandbox) and gives the judge one end of a socket in RT_RPC_FD.
+// Without the grader, RT_RUNNER=path/to/chNN_runner makes the judge start the runner itself (for the
+// course's own tests and for debugging).
+#include "judge.hpp"
+
+#include <cctype>
+#include <cstdlib>
+#include <vector>
+
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace rt::rpc {
+
+bool show_student_messages = false;
+
+namespace {
+
+struct connection {
+    int fd = -1;
+    std::string broken;  // why the runner is gone; empty while it answers
+};
+
+int start_runner(const char* path) {
+    int ends[2];
+    if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) != 0) return -1;
+    const pid_t child = ::fork();
+    if (child == 0) {
+        ::dup2(ends[1], 3);  // dup2 clears close-on-exec on the copy
+        ::setenv("RT_RPC_FD", "3", 1);
+        ::execl(path, path, static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    ::close(ends[1]);
+    return child > 0 ? ends[0] : -1;
+}
+
+connection& runner() {
+    static connection c = [] {
+        connection made;
+        if (const char* fd = std::getenv("RT_RPC_FD")) {
+            made.fd = std::atoi(fd);
+        } else if (const char* path = std::getenv("RT_RUNNER")) {
+            made.fd = start_runner(path);
+        }
+        if (made.fd < 0)
+            made.broken = "no runner: the grader starts one; by hand, set RT_RUNNER=build/.../chNN_runner";
+        return made;
+    }();
+    return c;
+}
+
+std::vector<erased_callback>& callbacks() {
+    static std::vector<erased_callback> kept;
+    return kept;
+}
+
+// A student's text, made safe to print in one line of feedback.
+std::string one_safe_line(const std::string& text) {
+    std::string out;
+    for (char c : text.substr(0, 300)) out += (c >= 0x20 && c < 0x7f) ? c : '?';
+    return out;
+}
+
+// What the test sees of an exception thrown by the student's code.
+std::string retell(const std::string& function, exception_kind k, const std::string& text) {
+    const std::string name = function.substr(0, function.find('<'));
+    if (k == exception_kind::not_implemented) {
+        // The stub's own words, rebuilt here: "not implemented yet: chapter NN, function".
+        const std::string prefix = "not implemented yet: chapter ";
+        std::string chapter = "this chapter";
+        if (text.compare(0, prefix.size(), prefix) == 0 && text.size() >= prefix.size() + 2 &&
+            std::isdigit(static_cast<unsigned char>(text[prefix.size()])) &&
+            std::isdigit(static_cast<unsigned char>(text[prefix.size() + 1])))
+            chapter = "chapter " + text.substr(prefix.size(), 2);
+        return "not implemented yet: " + chapter + ", " + name;
+    }
+    if (show_student_messages) return one_safe_line(text);
+    return "your " + name + " threw an exception (its message is not shown for hidden tests)";
+}
+
+[[noreturn]] void gone(connection& c, const std::string& function, const std::string& why) {
+    c.broken = "the runner (the process that runs your code) stopped answering during a call to " +
+               function.substr(0, function.find('<')) + ": " + why;
+    throw runner_gone(c.broken);
+}
+
+}  // namespace
+
+callback_scope::callback_scope() : mark_(callbacks().size()) {}
+callback_scope::~callback_scope() { callbacks().resize(mark_); }
+
+std::uint32_t judge_keep_callback(erased_callback f) {
+    callbacks().push_back(std::move(f));
+    return static_cast<std::uint32_t>(callbacks().size() - 1);
+}
+
+std::string call_remote(const std::string& function, const std::string& arguments) {
+    connection& c = runner();
+    if (!c.broken.empty()) throw runner_gone(c.broken);
+    channel ch(c.fd);
+    try {
+        writer call;
+        put(call, function);
+        call.raw(arguments.data(), arguments.size());
+        ch.send(kind::call, call.bytes());
+        for (;;) {
+            const message m = ch.receive();
+            if (m.what == kind::answer) return m.bytes;
+            if (m.what == kind::threw) {
+                throw_described(m.bytes, [&](exception_kind k, const std::string& t) { return retell(function, k, t); });
+            }
+            if (m.what != kind::call_back) throw protocol_error("a message the judge did not ask for");
+            reader r(m.bytes);
+            std::uint32_t id = 0;
+            get(r, id);
+            if (id >= callbacks().size()) throw protocol_error("a callback that was never given");
+            std::string rest(m.bytes.substr(4));
+            reader in(rest);
+            writer out;
+            try {
+                callbacks()[id](in, out);
+                if (in.remaining() != 0) throw protocol_error("a callback's arguments longer than expected");
+            } catch (const protocol_error&) {
+                throw;
+            } catch (const runner_gone&) {
+                throw;
+            } catch (...) {
+                ch.send(kind::threw, describe_current_exception());
+                continue;
+            }
+            ch.send(kind::call_back_answer, out.bytes());
+        }
+    } catch (const protocol_error& e) {
+        gone(c, function, e.what());
+    }
+}
+
+}  // namespace rt::rpc

@@ -1,0 +1,63 @@
+// judge.hpp — the judge's side of a call: a test calls an exercise function, the judge's stub for that
+// function (tests/support/rpc/chNN.cpp) sends the arguments to the runner and returns its answer.
+//
+// The judge is a doctest program built from the course's tests and this library, without any student
+// code: its verdict cannot be touched by the student's code, which only ever sees arguments and only
+// ever gives back answers (exact bits) or exceptions.
+#pragma once
+
+#include "channel.hpp"
+
+#include <cstdint>
+#include <string>
+
+namespace rt::rpc {
+
+// Hidden tests never show a student's own words (an exception's text could carry a hidden input out);
+// the public judge's main() sets this to true so public feedback keeps the student's messages.
+extern bool show_student_messages;
+
+// Raised in the judge when the runner stops answering (crash, exit, limit, garbage on the channel).
+struct runner_gone : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// Callbacks given during one call live exactly as long as that call.
+class callback_scope {
+public:
+    callback_scope();
+    ~callback_scope();
+    callback_scope(const callback_scope&) = delete;
+    callback_scope& operator=(const callback_scope&) = delete;
+
+private:
+    std::size_t mark_;
+};
+
+// Sends one call and serves the runner's callbacks until the answer comes; returns the answer's bytes.
+std::string call_remote(const std::string& function, const std::string& arguments);
+
+template <class T>
+std::string call_name(const char* function) {
+    return std::string(function) + (sizeof(T) == sizeof(float) ? "<float>" : "<double>");
+}
+
+template <class R, class... A>
+R forward(const std::string& function, const A&... arguments) {
+    callback_scope scope;
+    writer w;
+    (put(w, arguments), ...);
+    const std::string answer = call_remote(function, w.bytes());
+    reader r(answer);
+    R result{};
+    try {
+        get(r, result);
+        if (r.remaining() != 0) throw protocol_error("an answer longer than its value");
+    } catch (const protocol_error&) {
+        throw runner_gone("the runner's answer to " + function + " is not a value of the right type "
+                          "(did your code write to the grader's channel?)");
+    }
+    return result;
+}
+
+}  // namespace rt::rpc

@@ -1,0 +1,91 @@
+// runner.cpp — main() of every chNN_runner: answer the judge's calls with the student's code.
+//
+// `chNN_runner --probe` only starts and exits: the grader runs it once per chapter, so a static
+// initialiser that hangs or crashes fails the chapter's tests at once instead of one timeout per test.
+#include "runner.hpp"
+
+#include <cstdlib>
+#include <cstring>
+#include <map>
+
+#include <unistd.h>
+
+namespace rt::rpc {
+
+namespace {
+
+std::map<std::string, handler>& handlers() {
+    static std::map<std::string, handler> table;
+    return table;
+}
+
+int judge_fd = -1;
+
+// Runs one call from the judge and sends back its answer or its exception.
+void answer(channel& ch, const std::string& bytes) {
+    reader r(bytes);
+    std::string function;
+    get(r, function);
+    const auto found = handlers().find(function);
+    std::string rest(bytes.substr(4 + function.size()));
+    try {
+        if (found == handlers().end()) throw std::logic_error("the runner has no function " + function);
+        const std::string result = found->second(rest);
+        ch.send(kind::answer, result);
+    } catch (const protocol_error&) {
+        throw;
+    } catch (...) {
+        ch.send(kind::threw, describe_current_exception());
+    }
+}
+
+}  // namespace
+
+bool serve_erased(const std::string& function, handler h) {
+    handlers()[function] = std::move(h);
+    return true;
+}
+
+// Called by a callback argument inside the student's code: asks the judge, serving any call the judge
+// makes meanwhile, until the callback's answer comes.
+std::string runner_call_back(std::uint32_t id, const std::string& arguments) {
+    channel ch(judge_fd);
+    writer w;
+    put(w, id);
+    w.raw(arguments.data(), arguments.size());
+    ch.send(kind::call_back, w.bytes());
+    for (;;) {
+        const message m = ch.receive();
+        if (m.what == kind::call_back_answer) return m.bytes;
+        if (m.what == kind::threw) throw_described(m.bytes, nullptr);
+        if (m.what != kind::call) throw protocol_error("a message the runner did not expect");
+        answer(ch, m.bytes);
+    }
+}
+
+}  // namespace rt::rpc
+
+int main(int argc, char** argv) {
+    using namespace rt::rpc;
+    if (argc > 1 && std::strcmp(argv[1], "--probe") == 0) return 0;
+    const char* fd = std::getenv("RT_RPC_FD");
+    if (fd == nullptr) {
+        static const char text[] = "chNN_runner answers a judge's calls: run a judge (chNN_public_judge) with "
+                                   "RT_RUNNER=this program instead\n";
+        (void)!::write(2, text, sizeof text - 1);
+        return 2;
+    }
+    judge_fd = std::atoi(fd);
+    channel ch(judge_fd);
+    try {
+        for (;;) {
+            const message m = ch.receive();
+            if (m.what != kind::call) break;
+            answer(ch, m.bytes);
+        }
+    } catch (const protocol_error&) {
+        // The judge closed the channel: the test is over.
+    }
+    // _exit: no static destructor or atexit handler of the student's runs after the last answer.
+    ::_exit(0);
+}
