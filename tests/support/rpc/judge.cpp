@@ -58,6 +58,13 @@ std::vector<erased_callback>& callbacks() {
     return kept;
 }
 
+// "ch01::intersect_unit_sphere<float>" -> "intersect_unit_sphere", as the student wrote it.
+std::string plain_name(const std::string& function) {
+    std::string name = function.substr(0, function.find('<'));
+    const auto colons = name.rfind("::");
+    return colons == std::string::npos ? name : name.substr(colons + 2);
+}
+
 // A student's text, made safe to print in one line of feedback.
 std::string one_safe_line(const std::string& text) {
     std::string out;
@@ -67,7 +74,7 @@ std::string one_safe_line(const std::string& text) {
 
 // What the test sees of an exception thrown by the student's code.
 std::string retell(const std::string& function, exception_kind k, const std::string& text) {
-    const std::string name = function.substr(0, function.find('<'));
+    const std::string name = plain_name(function);
     if (k == exception_kind::not_implemented) {
         // The stub's own words, rebuilt here: "not implemented yet: chapter NN, function".
         const std::string prefix = "not implemented yet: chapter ";
@@ -84,7 +91,7 @@ std::string retell(const std::string& function, exception_kind k, const std::str
 
 [[noreturn]] void gone(connection& c, const std::string& function, const std::string& why) {
     c.broken = "the runner (the process that runs your code) stopped answering during a call to " +
-               function.substr(0, function.find('<')) + ": " + why;
+               plain_name(function) + ": " + why;
     throw runner_gone(c.broken);
 }
 

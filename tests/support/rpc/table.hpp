@@ -7,7 +7,9 @@
 //                       call runs the student's code;
 //   RT_RPC_PLACEHOLDER  as the stand-in for an exercise file in the grader's tree of a student kit: each
 //                       function throws, so the tree builds whatever state the student's files are in.
-// RT_RPC_FUNCTION(namespace, name) does a function template's part for float and double. The stubs'
+// RT_RPC_FUNCTION(namespace, name) does a function template's part for float and double. A call's name
+// is RT_RPC_CHAPTER::name<float> (cmake/judge.cmake defines RT_RPC_CHAPTER as "chNN": chapter 08's
+// closest_hit is not chapter 03's). The stubs'
 // definitions sit in `#if RT_RPC_DEFINES_STUBS`.
 #pragma once
 
@@ -18,7 +20,7 @@
 #define RT_RPC_DEFINES_STUBS 1
 // Inside the judge's definition of `name`: send the call, return the answer.
 #define RT_RPC_FORWARD(name, ...) \
-    ::rt::rpc::forward<decltype(name<T>(__VA_ARGS__))>(::rt::rpc::call_name<T>(#name), __VA_ARGS__)
+    ::rt::rpc::forward<decltype(name<T>(__VA_ARGS__))>(::rt::rpc::call_name<T>(RT_RPC_CHAPTER "::" #name), __VA_ARGS__)
 
 #elif defined(RT_RPC_PLACEHOLDER)
 
@@ -42,8 +44,9 @@ template <class R, class... A>
 
 #define RT_RPC_DEFINES_STUBS 0
 #define RT_RPC_FUNCTION(ns, name)                                                                  \
-    static const bool rt_rpc_served_##name = ::rt::rpc::serve(#name "<float>", &ns::name<float>) && \
-                                             ::rt::rpc::serve(#name "<double>", &ns::name<double>);
+    static const bool rt_rpc_served_##name =                                                       \
+        ::rt::rpc::serve(RT_RPC_CHAPTER "::" #name "<float>", &ns::name<float>) &&                  \
+        ::rt::rpc::serve(RT_RPC_CHAPTER "::" #name "<double>", &ns::name<double>);
 
 #else
 #error "compile a chapter's RPC table with RT_RPC_JUDGE, RT_RPC_RUNNER or RT_RPC_PLACEHOLDER (cmake/judge.cmake)"
