@@ -25,7 +25,7 @@ GRADE = os.path.join(REPO, "tools", "grader", "grade")
 FIXTURES = os.path.join(REPO, "tests", "fixtures", "adversarial")
 GRADING_TIME_LIMIT = 300          # seconds: grading must end well before this
 PREPARE_TIME_LIMIT = 850          # seconds: the first build of the grading tree (ctest gives 900)
-TEST_LIMITS = ["--timeout", "3", "--render-timeout", "20"]
+TEST_LIMITS = ["--timeout", "6", "--render-timeout", "20"]
 
 failures = []
 

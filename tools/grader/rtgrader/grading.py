@@ -302,21 +302,24 @@ class Grader:
             return f"not run: the submission's tests used their time budget ({self.options.submission_seconds:g} s)"
         return ""
 
-    def _run_runner(self, argv, log_path, user, env_extra=None, pass_fds=()):
-        """Runs the student's runner in the sandbox (it reads only itself, writes only a private /tmp)."""
+    def _run_runner(self, argv, log_path, user, work, env_extra=None, pass_fds=()):
+        """Runs the student's runner in the sandbox (it reads only itself, writes only a private /tmp).
+        work is passed in: the runner runs in a thread of its own, where self._per is not this grading's."""
         return sandbox.run(argv, limits=self.options.limits, log_path=log_path, user=user, inputs=[argv[0]],
-                           env_extra=env_extra, pass_fds=pass_fds, private_root=self._per.work)
+                           env_extra=env_extra, pass_fds=pass_fds, private_root=work)
 
     def _probe(self, runner, logs, user):
         """'' if the student's code starts (its static initialisers end), else why not (every case then fails)."""
-        return judge.probe(lambda argv: self._run_runner(argv, os.path.join(logs, "probe"), user), runner,
+        work = self._per.work
+        return judge.probe(lambda argv: self._run_runner(argv, os.path.join(logs, "probe"), user, work), runner,
                            self.options.limits)
 
     def _run_case(self, judge_exe, runner, case, kind, logs, user):
         limits = self.options.limits
-        found = judge.run_case(judge_exe, runner, case, limits, self._per.work,
+        work = self._per.work
+        found = judge.run_case(judge_exe, runner, case, limits, work,
                                lambda argv, env, fds: self._run_runner(argv, os.path.join(logs, "runner"), user,
-                                                                       env, fds))
+                                                                       work, env, fds))
         output = _clean_doctest_output(found.judge_output)
         if kind == "hidden":
             output = _hidden_feedback(output)
