@@ -68,7 +68,17 @@ std::string plain_name(const std::string& function) {
 // A student's text, made safe to print in one line of feedback.
 std::string one_safe_line(const std::string& text) {
     std::string out;
-    for (char c : text.substr(0, 300)) out += (c >= 0x20 && c < 0x7f) ? c : '?';
+    static const char hex[] = "0123456789abcdef";
+    for (char c : text.substr(0, 300)) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte >= 0x20 && byte < 0x7f) {
+            out += c;
+        } else {  // no control character reaches a terminal: \xNN, as the grader's summary writes them
+            out += "\\x";
+            out += hex[byte >> 4];
+            out += hex[byte & 15];
+        }
+    }
     return out;
 }
 
