@@ -1,5 +1,6 @@
 // Chapter 08's exercise functions for the judge and the runner (table.hpp explains the two halves).
-// The tree travels whole (its nodes and order); the intersector is a callback, as in chapter 03.
+// The tree travels whole (its nodes and order); the leaf intersector is a callback whose hit_record&
+// output travels back with its answer (wire.hpp).
 #include "bvh.hpp"
 #include "table.hpp"
 
@@ -35,12 +36,12 @@ bvh<T> build_sah(const std::vector<aabb<T>>& boxes, const build_options& options
     return RT_RPC_FORWARD(build_sah, boxes, options);
 }
 template <class T>
-std::optional<hit_record<T>> closest_hit(const bvh<T>& tree, const object_intersector<T>& intersect, const ray<T>& r,
+std::optional<hit_record<T>> closest_hit(const bvh<T>& tree, const leaf_intersector<T>& intersect, const ray<T>& r,
                                          const interval<T>& range) {
     return RT_RPC_FORWARD(closest_hit, tree, intersect, r, range);
 }
 template <class T>
-bool any_hit(const bvh<T>& tree, const object_intersector<T>& intersect, const ray<T>& r, const interval<T>& range) {
+bool any_hit(const bvh<T>& tree, const leaf_intersector<T>& intersect, const ray<T>& r, const interval<T>& range) {
     return RT_RPC_FORWARD(any_hit, tree, intersect, r, range);
 }
 }  // namespace rt::ch08

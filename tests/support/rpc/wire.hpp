@@ -162,12 +162,35 @@ using erased_callback = std::function<void(reader& arguments, writer& result)>;
 std::uint32_t judge_keep_callback(erased_callback f);                       // judge side
 std::string runner_call_back(std::uint32_t id, const std::string& arguments);  // runner side
 
+// A callback parameter that is a non-const reference is an output (chapter 08's leaf intersector fills a
+// hit_record&): its new value travels back after the result.
+template <class A>
+inline constexpr bool is_output = std::is_lvalue_reference_v<A> && !std::is_const_v<std::remove_reference_t<A>>;
+
+template <class A, class V>
+void put_if_output(writer& w, const V& value) {
+    if constexpr (is_output<A>) put(w, value);
+}
+template <class A, class V>
+void get_if_output(reader& r, V& value) {
+    if constexpr (is_output<A>) get(r, value);
+}
+template <class... A, class Tuple, std::size_t... I>
+void put_outputs(writer& w, const Tuple& values, std::index_sequence<I...>) {
+    (put_if_output<A>(w, std::get<I>(values)), ...);
+}
+template <class... A, class Tuple, std::size_t... I>
+void get_outputs(reader& r, Tuple& values, std::index_sequence<I...>) {
+    (get_if_output<A>(r, std::get<I>(values)), ...);
+}
+
 template <class R, class... A>
 void put(writer& w, const std::function<R(A...)>& f) {
     put(w, judge_keep_callback([&f](reader& in, writer& out) {
         std::tuple<std::decay_t<A>...> arguments;
         std::apply([&in](auto&... a) { (get(in, a), ...); }, arguments);
         put(out, std::apply(f, arguments));
+        put_outputs<A...>(out, arguments, std::index_sequence_for<A...>{});
     }));
 }
 template <class R, class... A>
@@ -181,6 +204,8 @@ void get(reader& r, std::function<R(A...)>& f) {
         reader in(answer);
         R result{};
         get(in, result);
+        std::tuple<A&...> parameters(a...);
+        get_outputs<A...>(in, parameters, std::index_sequence_for<A...>{});
         return result;
     };
 }
