@@ -81,7 +81,7 @@ TEST_CASE_TEMPLATE("every triangle formulation misses degenerate triangles and r
                 wrong += entry.template fn<T>()(q.r, q.shape, q.range).has_value() != refs[i].hit;
             }
             REQUIRE(checked > 0);
-            CHECK_MESSAGE(wrong == 0, entry.name << " " << rt::test::scalar_name<T>()
+            CHECK_MESSAGE(wrong == 0, entry.name << " " << std::string(rt::test::scalar_name<T>())
                                                  << ": a triangle with collinear corners has no plane, a ray lying in "
                                                     "the triangle's plane meets it in a segment, not a point, and NaN "
                                                     "input describes no ray: all three are misses (a hit exactly at "

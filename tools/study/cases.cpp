@@ -254,6 +254,91 @@ family<sphere_query<T>> scale_sphere_family(const case_options& o) {
     return fam;
 }
 
+// Secondary rays: shadow and reflection rays start on a surface. The hit
+// point is rounded to T, so the origin lies a hair inside or outside the
+// sphere, and the ray leaves it (or, for a refraction, enters it). Spheres of
+// ordinary size, and the ground sphere of radius 1e6 off the world's origin.
+template <class T>
+family<sphere_query<T>> secondary_sphere_family(const case_options& o) {
+    family<sphere_query<T>> fam{"secondary", "origins on the surface (rounded), leaving it: shadow and reflection rays",
+                                {}, {}, {}, {}};
+    random_stream rs(o.seed + 8);
+    for (const char* kind : {"unit-size leaving", "unit-size entering", "ground 1e6 leaving"}) {
+        int g = fam.add_group(kind);
+        for (int i = 0; i < o.per_group; ++i) {
+            const bool ground = kind[0] == 'g';
+            vec3d c = ground ? vec3d(rs.uniform(-100, 100), -1e6, rs.uniform(-100, 100)) : rs.in_box(10);
+            double r = ground ? 1e6 : rs.uniform(0.5, 3);
+            // A surface point near the top for the ground, anywhere otherwise.
+            vec3d n = ground ? normalize(vec3d(rs.uniform(-1e-4, 1e-4), 1, rs.uniform(-1e-4, 1e-4))) : rs.unit();
+            vec3d u, v;
+            frame(n, u, v);
+            vec3d tangential = rs.uniform(-0.95, 0.95) * u + rs.uniform(-0.95, 0.95) * v;
+            vec3d d = (kind[10] == 'e' ? -n : n) + tangential;
+            fam.add({{to<T>(c + r * n), to<T>(d)}, make_sphere<T>(c, r), ahead<T>()}, g);
+        }
+    }
+    return fam;
+}
+
+// Spheres at the limits of the format: radius and distances near the
+// smallest and largest normal numbers whose squares (and products of four)
+// leave the range, and non-zero subnormal directions.
+template <class T>
+family<sphere_query<T>> limits_sphere_family(const case_options& o) {
+    family<sphere_query<T>> fam{"limits", "radius 1e-30..1e30 (float), 1e-200..1e300 (double); subnormal directions",
+                                {}, {}, {}, {}};
+    random_stream rs(o.seed + 9);
+    std::vector<double> scales = sizeof(T) == 4 ? std::vector<double>{1e-36, 1e-30, 1e30, 1e36}
+                                                : std::vector<double>{1e-300, 1e-200, 1e200, 1e300};
+    for (double s : scales) {
+        int g = fam.add_group("scene x " + label(s));
+        for (int i = 0; i < o.per_group / 2; ++i) {
+            vec3d c = rs.in_box(1), origin = rs.in_box(2);
+            double r = rs.uniform(0.2, 0.6);
+            vec3d aim = c + rs.unit() * (r * rs.uniform(0, 1.5));
+            fam.add({{to<T>(s * origin), to<T>(aim - origin)}, make_sphere<T>(s * c, s * r), ahead<T>()}, g);
+        }
+    }
+    const double sub = std::ldexp(1.0, std::numeric_limits<T>::min_exponent - 8);  // subnormal in T
+    int g = fam.add_group("subnormal direction");
+    for (int i = 0; i < o.per_group / 2; ++i) {
+        vec3d c = rs.in_box(1), origin = rs.in_box(2);
+        double r = rs.uniform(0.2, 0.6);
+        vec3d aim = c + rs.unit() * (r * rs.uniform(0, 1.5));
+        // A small scene so that t = |aim - origin| / |d| stays representable.
+        const double s = std::ldexp(1.0, std::numeric_limits<T>::min_exponent + 40);
+        fam.add({{to<T>(s * origin), to<T>(normalize(aim - origin) * sub)}, make_sphere<T>(s * c, s * r), ahead<T>()},
+                g);
+    }
+    return fam;
+}
+
+// Huge spheres whose centre is NOT straight below the origin along an axis:
+// a random centre, the origin 0.01..1 above a random point of the surface,
+// so every coordinate of f = o - C is large and c cancels in all three.
+template <class T>
+family<sphere_query<T>> offaxis_sphere_family(const case_options& o) {
+    family<sphere_query<T>> fam{"offaxis", "ground spheres 1e4..1e6 with a general centre, origin 0.01..1 above",
+                                {}, {}, {}, {}};
+    random_stream rs(o.seed + 10);
+    const double degree = 3.141592653589793 / 180;
+    for (double R : {1e4, 1e6}) {
+        for (double h : {1e-2, 1.0}) {
+            int g = fam.add_group("R " + label(R) + " h " + label(h));
+            for (int i = 0; i < o.per_group / 2; ++i) {
+                vec3d c = rs.in_box(1000), up = rs.unit(), u, v;
+                frame(up, u, v);
+                double elevation = (i % 2 ? rs.uniform(-90, 5) : rs.uniform(-3, 1)) * degree;
+                double azimuth = rs.uniform(0, 360) * degree;
+                vec3d d = std::sin(elevation) * up + std::cos(elevation) * (std::cos(azimuth) * u + std::sin(azimuth) * v);
+                fam.add({{to<T>(c + (R + h) * up), to<T>(d)}, make_sphere<T>(c, R), ahead<T>()}, g);
+            }
+        }
+    }
+    return fam;
+}
+
 // Named cases: invalid input and the edges of the range rule.
 template <class T>
 family<sphere_query<T>> special_sphere_family() {
@@ -300,6 +385,9 @@ std::vector<family<sphere_query<T>>> sphere_families(const case_options& o) {
     all.push_back(grazing_sphere_family<T>(o));
     all.push_back(origin_sphere_family<T>(o));
     all.push_back(scale_sphere_family<T>(o));
+    all.push_back(secondary_sphere_family<T>(o));
+    all.push_back(limits_sphere_family<T>(o));
+    all.push_back(offaxis_sphere_family<T>(o));
     all.push_back(special_sphere_family<T>());
     return all;
 }

@@ -164,76 +164,124 @@ void write_group_csv(const std::string& path, const std::vector<std::string>& gr
     }
 }
 
+namespace {
+
+// One marker shape per formulation (its position in the table order), so
+// that points are told apart by shape, not by one of many colours; the
+// precision decides the fill: float filled, double hollow.
+void marker(std::ostream& f, int shape, double x, double y, bool filled, const char* colour) {
+    const std::string style = std::string("fill='") + (filled ? colour : "white") + "' stroke='" + colour +
+                              "' stroke-width='1.6'";
+    const double r = 5;
+    switch (shape % 8) {
+    case 0: f << "<circle cx='" << x << "' cy='" << y << "' r='" << r << "' " << style << "/>"; break;
+    case 1: f << "<rect x='" << x - r << "' y='" << y - r << "' width='" << 2 * r << "' height='" << 2 * r << "' " << style << "/>"; break;
+    case 2: f << "<polygon points='" << x << "," << y - r - 1 << " " << x + r + 1 << "," << y << " " << x << "," << y + r + 1 << " " << x - r - 1 << "," << y << "' " << style << "/>"; break;
+    case 3: f << "<polygon points='" << x << "," << y - r - 1 << " " << x + r + 1 << "," << y + r << " " << x - r - 1 << "," << y + r << "' " << style << "/>"; break;
+    case 4: f << "<polygon points='" << x << "," << y + r + 1 << " " << x + r + 1 << "," << y - r << " " << x - r - 1 << "," << y - r << "' " << style << "/>"; break;
+    case 5: f << "<polygon points='" << x - r - 1 << "," << y << " " << x + r << "," << y - r - 1 << " " << x + r << "," << y + r + 1 << "' " << style << "/>"; break;
+    case 6: f << "<polygon points='" << x + r + 1 << "," << y << " " << x - r << "," << y - r - 1 << " " << x - r << "," << y + r + 1 << "' " << style << "/>"; break;
+    default:  // a hexagon
+        f << "<polygon points='";
+        for (int k = 0; k < 6; ++k)
+            f << x + (r + 1) * std::cos(k * 1.0471975511965976) << "," << y + (r + 1) * std::sin(k * 1.0471975511965976) << " ";
+        f << "' " << style << "/>";
+    }
+    f << "\n";
+}
+
+}  // namespace
+
 void write_svg(const std::string& path, const std::vector<std::string>& families, const std::vector<outcome>& rows,
                const std::string& subtitle) {
-    const int columns = 4, panel_w = 330, panel_h = 300, margin = 50, top = 70;
-    const int panel_rows = static_cast<int>((families.size() + columns - 1) / columns);
-    const int legend_y = top + panel_rows * panel_h + 10;
-    const int width = columns * panel_w + 20, height = legend_y + 60;
-    const char* palette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
-                             "#17becf", "#bcbd22", "#393b79", "#637939", "#e7969c", "#7f7f7f", "#000000"};
-    const int palette_size = static_cast<int>(sizeof palette / sizeof palette[0]);
-    // One colour per formulation name across all panels.
-    std::vector<std::string> names;
+    // Two panels per row; each panel is a plot and, beside it, a table of
+    // its points (so no label is ever drawn on top of another point).
+    const int columns = 2, plot_w = 260, plot_h = 230, table_w = 430, left = 55, row_h = 14;
+    const int panel_w = left + plot_w + 20 + table_w, top = 80;
+    const char* palette[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#000000"};
+    std::vector<std::string> names;  // every formulation, in table order: its index picks shape and colour
     for (const outcome& o : rows)
         if (std::find(names.begin(), names.end(), o.formulation) == names.end()) names.push_back(o.formulation);
-    auto colour = [&](const std::string& name) {
-        auto i = std::find(names.begin(), names.end(), name) - names.begin();
-        return palette[i % palette_size];
-    };
-    // Shared axes: time 1..1000 ns, error 1e-18..1 (smaller errors, and exact answers, sit on the floor).
-    const int plot_w = panel_w - margin - 20, plot_h = panel_h - 30 - margin;
-    auto x_of = [&](double ns) { return margin + (std::log10(std::clamp(ns, 1.0, 1000.0)) / 3.0) * plot_w; };
-    auto y_of = [&](double err) { return 30 + (-std::log10(std::clamp(err, 1e-18, 1.0)) / 18.0) * plot_h; };
+    auto index_of = [&](const std::string& n) { return static_cast<int>(std::find(names.begin(), names.end(), n) - names.begin()); };
+    // Panel heights follow their tables (up to 16 rows).
+    std::vector<int> panel_h(families.size());
+    for (std::size_t p = 0; p < families.size(); ++p) {
+        int n = 0;
+        for (const outcome& o : rows) n += o.family == families[p];
+        panel_h[p] = std::max(plot_h + 75, 40 + (n + 2) * row_h + 20);
+    }
+    std::vector<int> row_top;
+    int y_cursor = top;
+    for (std::size_t p = 0; p < families.size(); p += columns) {
+        row_top.push_back(y_cursor);
+        int h = panel_h[p];
+        if (p + 1 < families.size()) h = std::max(h, panel_h[p + 1]);
+        y_cursor += h;
+    }
+    const int width = columns * panel_w + 20, height = y_cursor + 20;
+    // Axes: time 1..1000 ns, error 1e-18..1; values outside are drawn on the
+    // edge, marked with an arrow, and said in the table ("clipped").
+    const double ns_lo = 1, ns_hi = 1000, err_lo = 1e-18, err_hi = 1;
+    auto x_of = [&](double ns) { return left + (std::log10(std::clamp(ns, ns_lo, ns_hi)) / 3.0) * plot_w; };
+    auto y_of = [&](double err) { return 30 + (-std::log10(std::clamp(err, err_lo, err_hi)) / 18.0) * plot_h; };
     std::ofstream f = open(path);
     f << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='" << height
       << "' font-family='sans-serif' font-size='11'>\n<rect width='100%' height='100%' fill='white'/>\n";
-    f << "<text x='10' y='22' font-size='16'>Work-precision: error against time, one point per formulation and "
-         "precision</text>\n";
+    f << "<text x='10' y='22' font-size='16'>Work-precision: largest relative error against time, one panel per case "
+         "family</text>\n";
     f << "<text x='10' y='40'>" << subtitle << "</text>\n";
-    f << "<text x='10' y='56'>x: nanoseconds per test (median, log scale); y: largest relative error of a hit on the "
-         "right root (log scale). Circle: float; square: double. A red ring marks misclassified rays (for meshes: "
-         "leaks), count beside it.</text>\n";
+    f << "<text x='10' y='56'>x: ns per test (median, log); y: largest relative error of a hit on the right root (log). "
+         "Shape and colour: formulation (see each table); filled: float, hollow: double.</text>\n";
+    f << "<text x='10' y='70'>Errors below 1e-18 (also exact answers, 0) sit on the floor and errors above 1 on the "
+         "ceiling, with an arrow; the table gives the true value. Bad: misclassified rays (meshes: leaks).</text>\n";
     for (std::size_t p = 0; p < families.size(); ++p) {
-        int ox = 10 + static_cast<int>(p % columns) * panel_w, oy = top + static_cast<int>(p / columns) * panel_h;
+        const int ox = 10 + static_cast<int>(p % columns) * panel_w, oy = row_top[p / columns];
         f << "<g transform='translate(" << ox << "," << oy << ")'>\n";
-        f << "<rect x='" << margin << "' y='30' width='" << plot_w << "' height='" << plot_h
+        f << "<rect x='" << left << "' y='30' width='" << plot_w << "' height='" << plot_h
           << "' fill='none' stroke='#999'/>\n";
-        f << "<text x='" << margin << "' y='22' font-size='13' font-weight='bold'>" << families[p] << "</text>\n";
+        f << "<text x='" << left << "' y='20' font-size='13' font-weight='bold'>" << families[p] << "</text>\n";
         for (int e = 0; e <= 18; e += 3)
-            f << "<text x='" << margin - 4 << "' y='" << y_of(std::pow(10.0, -e)) + 4 << "' text-anchor='end'>1e-" << e
+            f << "<text x='" << left - 4 << "' y='" << y_of(std::pow(10.0, -e)) + 4 << "' text-anchor='end'>1e-" << e
               << "</text>\n";
         for (double ns : {1.0, 10.0, 100.0, 1000.0})
-            f << "<text x='" << x_of(ns) << "' y='" << panel_h - margin + 14 << "' text-anchor='middle'>" << ns
-              << "</text>\n";
-        f << "<text x='" << margin + plot_w / 2 << "' y='" << panel_h - margin + 28 << "' text-anchor='middle' "
-             "fill='#555'>ns per test</text>\n";
+            f << "<text x='" << x_of(ns) << "' y='" << 30 + plot_h + 14 << "' text-anchor='middle'>" << ns << "</text>\n";
+        f << "<text x='" << left + plot_w / 2 << "' y='" << 30 + plot_h + 28 << "' text-anchor='middle' fill='#555'>ns per "
+             "test</text>\n";
+        // The table beside the plot.
+        const int tx = left + plot_w + 20;
+        int ty = 30;
+        f << "<text x='" << tx << "' y='" << ty << "' font-weight='bold'><tspan x='" << tx + 18 << "'>formulation</tspan>"
+          << "<tspan x='" << tx + 150 << "'>prec</tspan><tspan x='" << tx + 195 << "'>ns</tspan><tspan x='" << tx + 245
+          << "'>max rel. error</tspan><tspan x='" << tx + 350 << "'>bad</tspan></text>\n";
+        int clipped = 0;
         for (const outcome& o : rows) {
-            if (o.family != families[p] || o.failed || o.ns.median <= 0 || o.error.count == 0) continue;
-            double x = x_of(o.ns.median), y = y_of(o.error.rel_max);
-            const char* c = colour(o.formulation);
-            if (o.precision == "float")
-                f << "<circle cx='" << x << "' cy='" << y << "' r='5' fill='" << c << "' fill-opacity='0.85'/>\n";
-            else
-                f << "<rect x='" << x - 4.5 << "' y='" << y - 4.5 << "' width='9' height='9' fill='" << c
-                  << "' fill-opacity='0.85'/>\n";
-            // For closed meshes the count that matters is the leaks: rays
-            // through a shared edge may go to either neighbour, not to neither.
+            if (o.family != families[p]) continue;
+            ty += row_h;
+            const int k = index_of(o.formulation);
+            const char* colour = palette[k % 8];
+            const bool has_point = !o.failed && o.ns.median > 0 && o.error.count > 0;
+            std::string err = o.failed ? "failed" : (o.error.count == 0 ? "no hits" : fmt("%.2g", o.error.rel_max));
+            const bool clip = has_point && (o.error.rel_max < err_lo || o.error.rel_max > err_hi || o.ns.median < ns_lo ||
+                                            o.ns.median > ns_hi);
+            if (clip) err += " (clipped)", ++clipped;
             std::size_t bad = o.rays ? o.leaks : o.misclassified();
-            if (bad)
-                f << "<circle cx='" << x << "' cy='" << y << "' r='8' fill='none' stroke='red' stroke-width='1.2'/>"
-                  << "<text x='" << x + 9 << "' y='" << y - 6 << "' fill='red' font-size='9'>" << bad << "</text>\n";
+            marker(f, k, tx + 6, ty - 4, o.precision == "float", colour);
+            f << "<text x='" << tx + 18 << "' y='" << ty << "'>" << o.formulation << "<tspan x='" << tx + 150 << "'>"
+              << o.precision << "</tspan><tspan x='" << tx + 195 << "'>" << (o.ns.median > 0 ? fmt("%.1f", o.ns.median) : "-")
+              << "</tspan><tspan x='" << tx + 245 << "'>" << err << "</tspan><tspan x='" << tx + 350 << "'"
+              << (bad ? " fill='red'" : "") << ">" << bad << "</tspan></text>\n";
+            if (!has_point) continue;
+            const double x = x_of(o.ns.median), y = y_of(o.error.rel_max);
+            marker(f, k, x, y, o.precision == "float", colour);
+            if (o.error.rel_max < err_lo)
+                f << "<path d='M" << x << "," << y + 7 << " l0,8 m-3,-3 l3,3 l3,-3' stroke='#555' fill='none'/>\n";
+            else if (o.error.rel_max > err_hi)
+                f << "<path d='M" << x << "," << y - 7 << " l0,-8 m-3,3 l3,-3 l3,3' stroke='#555' fill='none'/>\n";
         }
+        if (clipped)
+            f << "<text x='" << left << "' y='" << 30 + plot_h + 44 << "' fill='#555'>" << clipped
+              << " value(s) clipped to the axes (arrows); true values in the table</text>\n";
         f << "</g>\n";
-    }
-    // The legend: every formulation's colour, in table order.
-    int lx = 10, ly = legend_y;
-    for (const std::string& n : names) {
-        int w = 24 + 7 * static_cast<int>(n.size());
-        if (lx + w > width - 10) lx = 10, ly += 18;
-        f << "<rect x='" << lx << "' y='" << ly << "' width='10' height='10' fill='" << colour(n) << "'/><text x='"
-          << lx + 14 << "' y='" << ly + 9 << "'>" << n << "</text>\n";
-        lx += w;
     }
     f << "</svg>\n";
 }

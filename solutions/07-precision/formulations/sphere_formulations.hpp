@@ -295,16 +295,31 @@ inline std::optional<float> sphere_in_double(const ray<float>& ray_, const spher
     // A grazing ray: the discriminant cancelled more than 26 of double's 53
     // bits, too few left for float's 24. Only then, double-double.
     if (disc < ar2 * 0x1p-26) return sphere_float_in_double_word(ray_, s, range);
-    // r * r is exact (a float squared). c = f.f - r^2 keeps its digits
-    // unless f.f and r^2 agree in more than about 20 bits: then, and only
-    // then (an origin close to a huge sphere), c is summed again from the
-    // exact pieces of f. Paying only when it cancels keeps this form cheap.
-    double ff = dot(f, f), r2 = r * r, c = ff - r2;
-    if (!(std::fabs(c) > 0x1p-20 * ff)) {
-        const vec3<float>& o = ray_.origin;
-        const vec3<float>& C = s.center;
-        double_word<double> fw[3] = {two_sum(double(o.x), -double(C.x)), two_sum(double(o.y), -double(C.y)),
-                                     two_sum(double(o.z), -double(C.z))};
+    // c = f.f - r^2, cheaply and accurately for the rays a renderer sends
+    // most: with k the axis where |f| is largest,
+    //     c = (sum of the other two squares) + (|f_k| - r)(|f_k| + r),
+    // so the ground sphere's huge f_k meets r in a subtraction of two doubles
+    // (exact by Sterbenz's lemma when they are within a factor of 2) before
+    // anything is squared. Each part is then off by at most 4 double
+    // rounding errors of its own size; when c is at least 2^26 times that
+    // bound (so t keeps 25 good bits), c is used as it is. Only otherwise
+    // (an origin within about 2^-26 of the surface in the units of its
+    // farthest coordinate, or an f = o - C that double could not hold) is c
+    // summed again from exact pieces (exact_c). Primary rays on the ground,
+    // and shadow and reflection rays leaving a surface, stay on the fast path.
+    const vec3<float>& o = ray_.origin;
+    const vec3<float>& C = s.center;
+    double_word<double> fw[3] = {two_sum(double(o.x), -double(C.x)), two_sum(double(o.y), -double(C.y)),
+                                 two_sum(double(o.z), -double(C.z))};
+    const double fx = std::fabs(f.x), fy = std::fabs(f.y), fz = std::fabs(f.z);
+    const int k = fx >= fy ? (fx >= fz ? 0 : 2) : (fy >= fz ? 1 : 2);
+    const double big = k == 0 ? fx : (k == 1 ? fy : fz);
+    const double rest = k == 0 ? f.y * f.y + f.z * f.z : (k == 1 ? f.x * f.x + f.z * f.z : f.x * f.x + f.y * f.y);
+    const double pair = (big - r) * (big + r);
+    double c = rest + pair;
+    const bool f_exact = fw[0].lo == 0 && fw[1].lo == 0 && fw[2].lo == 0;
+    if (!f_exact || !(std::fabs(c) > 0x1p-26 * (rest + std::fabs(pair)))) {
+        double r2 = r * r;  // exact: a float squared
         c = exact_c(fw, double_word<double>{r2, 0});
     }
     auto [t0, t1] = stable_roots(a, h, c, disc);
