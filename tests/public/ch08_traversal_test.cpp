@@ -92,6 +92,27 @@ TEST_CASE_TEMPLATE("the nearest hit wins even when another leaf is visited first
     }
 }
 
+TEST_CASE_TEMPLATE("nearest child first, and boxes beyond the closest hit are skipped", T, RT_SCALARS) {
+    // 32 spheres in a row along +x, one per leaf. A ray along the row hits
+    // all of them; a tree walked nearest-first finds the first sphere, and
+    // every other box then starts beyond that hit and is skipped.
+    objects<T> scene;
+    for (int i = 0; i < 32; ++i) scene.spheres.push_back({{T(3 * i + 3), 0, 0}, T(1)});
+    build_options one_per_leaf;
+    one_per_leaf.max_leaf_size = 1;
+    const bvh<T> tree = build_median(scene.boxes(), one_per_leaf);
+    long calls = 0;
+    const ray<T> r{{0, T(0.25), 0}, {1, 0, 0}};
+    const auto got = closest_hit(tree, scene.intersector(&calls), r, rt::test::everything_ahead<T>());
+    REQUIRE_MESSAGE(got.has_value(), "the ray along the row hits every sphere");
+    CHECK_MESSAGE(got->object == 0, "the nearest sphere is object 0; got " << object_of(got));
+    CHECK_MESSAGE(calls <= 3, "the traversal asked " << calls << " of the 32 spheres; nearest first, it needs 1 "
+                                                        "(or 2 or 3 where boxes touch). Visit the child with the "
+                                                        "smaller entry first (push the farther one first), and "
+                                                        "when you pop a node whose entry lies beyond the closest "
+                                                        "hit so far (entry > widen_exit(best t)), skip it");
+}
+
 TEST_CASE_TEMPLATE("equal t: the lowest object index wins, whatever order the tree visits", T, RT_SCALARS) {
     // The same sphere three times, at indices 1, 4 and 6, among others; the
     // copies are hit at exactly the same t. Brute force keeps index 1.
