@@ -132,14 +132,6 @@ TEST_CASE_TEMPLATE("compensated and mixed formulations stay within a few ULPs on
             INFO(name << " " << std::string(rt::test::scalar_name<T>()) << " on family '" << fam.name << "'");
             CHECK_MESSAGE(o.misclassified() == 0, "false hits " << o.false_hits << ", false misses " << o.false_misses);
             CHECK_MESSAGE(o.wrong_roots == 0, "wrong roots " << o.wrong_roots);
-            if (name == "compensated" && fam.name == "secondary" && sizeof(T) == 4) {
-                // Known defect, not fixed (issue 11): compensated float loses
-                // ULPs on some rays leaving a surface (13 here, 2.2e3 in the
-                // default study). Counted so that it cannot hide; mixed and
-                // chapter 07 hold 4 ULPs on the same rays.
-                MESSAGE("compensated float on 'secondary': largest error " << o.error.ulp_max << " ULPs (known defect)");
-                continue;
-            }
             CHECK_MESSAGE(o.error.ulp_max <= 4, "the stable root pair from an accurate c and discriminant is within a "
                                                 "few ULPs; largest error "
                                                     << o.error.ulp_max << " ULPs");

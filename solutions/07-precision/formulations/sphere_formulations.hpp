@@ -178,6 +178,22 @@ T exact_c(const double_word<T> (&f)[3], double_word<T> r2) {
     terms[n++] = -r2.hi, terms[n++] = -r2.lo;
     return sum_k3(terms);
 }
+
+// exact_c for the compensated form. Float's triple precision (72 bits) is
+// not enough when c is 2^-55 of f.f (a shadow ray leaving a sphere of radius
+// 1e6): float data sums its exact pieces in double instead (each piece is a
+// float, so converting them loses nothing).
+template <class T>
+T exact_c_of(const double_word<T> (&f)[3], double_word<T> r2) {
+    if constexpr (sizeof(T) == sizeof(float)) {
+        const double_word<double> fd[3] = {{double(f[0].hi), double(f[0].lo)},
+                                           {double(f[1].hi), double(f[1].lo)},
+                                           {double(f[2].hi), double(f[2].lo)}};
+        return static_cast<T>(exact_c(fd, double_word<double>{double(r2.hi), double(r2.lo)}));
+    } else {
+        return exact_c(f, r2);
+    }
+}
 }  // namespace detail
 
 template <class T>
@@ -260,7 +276,7 @@ std::optional<T> sphere_compensated(const ray<T>& ray_, const sphere<T>& s, cons
     // 20 bits is it summed again from exact pieces (detail::exact_c).
     dw ff = add_same_sign(add_same_sign(f[0] * f[0], f[1] * f[1]), f[2] * f[2]);
     dw cw = ff - r2;
-    T c = std::fabs(cw.hi) > ff.hi * T(0x1p-20) ? cw.value() : detail::exact_c(f, r2);
+    T c = std::fabs(cw.hi) > ff.hi * T(0x1p-20) ? cw.value() : detail::exact_c_of(f, r2);
 
     auto [t0, t1] = stable_roots(a.value(), h.value(), c, disc.value());
     // Undo the scaling: |f + t d| = r became |2^ef f + t' 2^ed d| = 2^ef r,
