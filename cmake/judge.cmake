@@ -9,9 +9,9 @@
 #
 # Adding a chapter: write tests/support/rpc/chNN.cpp (one RT_RPC_FUNCTION line and one forwarding stub
 # per exercise function; a new struct in its arguments needs a fields() overload, see wire.hpp).
-# Off by default in the sanitizer build: the grader builds its own tree, and the judges would only
-# compile the tests once more.
-if(RT_SANITIZE)
+# Off by default in the sanitizer build and in a student's build (the kit): the grader configures its
+# own tree with RT_JUDGE=ON, and there the judges would only compile the tests once more.
+if(RT_SANITIZE OR RT_SIDE STREQUAL "student")
   option(RT_JUDGE "build each chapter's judges and runner (the autograder's)" OFF)
 else()
   option(RT_JUDGE "build each chapter's judges and runner (the autograder's)" ON)

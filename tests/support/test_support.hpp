@@ -28,8 +28,12 @@ const char* scalar_name() {
 
 // True when a and b agree to a relative tolerance suited to T
 // (about 1e-4 for float, 1e-10 for double) or an absolute one near zero.
+// Never for infinity or NaN: a tolerance scaled by |a| would call +inf close
+// to anything (|inf - b| <= tol * inf), so a wrong answer of +inf would pass.
+// A test whose contract wants a non-finite value checks it on its own.
 template <class T>
 bool close(T a, T b, T scale = T(1)) {
+    if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(scale)) return false;
     const T tol = sizeof(T) == sizeof(float) ? T(1e-4) : T(1e-10);
     return std::fabs(a - b) <= tol * std::fmax(scale, std::fmax(std::fabs(a), std::fabs(b)));
 }

@@ -4,6 +4,7 @@
   grader_tests.py baseline   --work DIR --build-dir TREE   solutions score full marks, stubs zero (politely)
   grader_tests.py fixture NAME --work DIR --build-dir TREE one adversarial submission behaves as expected
   grader_tests.py batch      --work DIR --build-dir TREE   a folder of submissions, one results file each + CSV
+  grader_tests.py kit        --work DIR                    a kit's preview with chapter 03 broken: the others count
 
 Every grading runs the real command line (tools/grader/grade) on chapter 01
 (and 02 where a fixture needs a second chapter) against one prebuilt
@@ -208,15 +209,56 @@ def run_batch(args):
           f"implausible batch scores {scores}")
 
 
+def run_kit(args):
+    """In a student kit the grading tree is built from the kit itself: a chapter whose file does not
+    compile must cost that chapter only (issue 9). A kit-like copy of the repository (no solutions,
+    hidden tests or fixtures) with the solutions of 01, 02 and 04 and a broken 03 is previewed."""
+    kit = os.path.join(args.work, "kit")
+    shutil.rmtree(kit, ignore_errors=True)
+    private = {"solutions", "tests/hidden", "tests/fixtures", ".git"}
+
+    def ignore(folder, names):
+        rel = os.path.relpath(folder, REPO)
+        return [n for n in names if os.path.normpath(os.path.join(rel, n)) in private or
+                (rel == "." and n.startswith("build")) or n == "__pycache__"]
+
+    shutil.copytree(REPO, kit, ignore=ignore)
+    for chapter in ("01", "02", "03", "04"):
+        folder, names = solution_files(chapter)
+        for n in names:
+            shutil.copy(os.path.join(folder, n), os.path.join(kit, "chapters", os.path.basename(folder), n))
+    broken = glob.glob(os.path.join(kit, "chapters", "03-*", "scene_loop.cpp"))[0]
+    with open(broken, "a") as f:
+        f.write("\nthis line is not C++\n")
+    out = os.path.join(kit, "preview.json")
+    cmd = [sys.executable, os.path.join(kit, "tools", "grader", "grade"), kit, "--out", out, "--chapters",
+           "01,02,03,04", "--build-dir", os.path.join(args.work, "kit-tree"), *TEST_LIMITS]
+    result = subprocess.run(cmd, capture_output=True, text=True, timeout=PREPARE_TIME_LIMIT)
+    print(result.stdout[-4000:], result.stderr[-3000:])
+    check(result.returncode == 0, f"grading the kit exited with {result.returncode}")
+    data = load_results(out)
+    if not data:
+        return
+    for t in data["tests"]:
+        chapter, kind = t["tags"]
+        if chapter in ("ch01", "ch02") or (chapter == "ch04" and kind == "public"):
+            check(t["status"] == "passed", f"kit: {t['name']} failed although its chapter is correct: {t['output'][:300]}")
+        elif chapter == "ch03":
+            check(t["status"] == "failed", f"kit: {t['name']} passed although chapter 03 does not compile")
+    entry = [t for t in data["tests"] if t["name"] == "ch03 compilation"]
+    check(entry and "error" in entry[0]["output"], "kit: no 'ch03 compilation' entry with the compiler's message")
+    check("does not build" not in data["output"], "kit: the whole preview failed")
+
+
 def main():
     p = argparse.ArgumentParser()
-    p.add_argument("what", choices=["baseline", "fixture", "batch"])
+    p.add_argument("what", choices=["baseline", "fixture", "batch", "kit"])
     p.add_argument("name", nargs="?")
     p.add_argument("--work", required=True)
     p.add_argument("--build-dir", required=True)
     args = p.parse_args()
     os.makedirs(args.work, exist_ok=True)
-    {"baseline": run_baseline, "fixture": run_fixture, "batch": run_batch}[args.what](args)
+    {"baseline": run_baseline, "fixture": run_fixture, "batch": run_batch, "kit": run_kit}[args.what](args)
     if failures:
         print(f"{len(failures)} check(s) failed")
         return 1

@@ -76,16 +76,34 @@ def summary(data, chapters, path=None):
                    + (", ".join(parts) if compiled else "DID NOT BUILD"))
         failed = [t for t in tests if t["status"] != "passed" and (compiled or t["tags"][1] == "compilation")]
         for t in failed[:8]:
-            lines = [line.strip() for line in t["output"].splitlines() if line.strip()]
-            telling = [line for line in lines if "ERROR:" in line or "logged:" in line or "exception" in line]
-            first = (telling or lines or [""])[0]
-            first = first.split("ERROR:", 1)[-1].strip()
-            out.append(f"    failed: {t['name']}: {first[:150]}")
+            headline, explanation = _why(t["output"])
+            out.append(f"    failed: {t['name']}: {headline[:150]}")
+            out += [f"        {line[:200]}" for line in explanation]
         if len(failed) > 8:
             out.append(f"    ... and {len(failed) - 8} more failed (see the results file)")
     out.append(data["output"])
     out.append(f"({data['execution_time']} s)" + (f" -> {path}" if path else ""))
     return terminal_safe("\n".join(out))
+
+
+def _why(output):
+    """What the terminal shows of a failed test: its first telling line, then
+    the explanation results.json holds (the checks' teaching messages, the
+    picture's figures and where its files are), a few lines of it."""
+    lines = [line.strip() for line in output.splitlines() if line.strip()]
+    telling = [line for line in lines if "ERROR:" in line or "exception" in line]
+    headline = (telling or lines or [""])[0]
+    rest = lines[lines.index(headline) + 1:] if headline in lines else []
+    headline = headline.split("ERROR:", 1)[-1].strip()
+    # doctest's own lines say where and which expression: the messages say why.
+    explanation = [line.split("logged:", 1)[-1].strip() if line.startswith("logged:") else line for line in rest
+                   if not line.startswith(("values:", "TEST CASE:", "CHECK", "REQUIRE")) and
+                   not re.match(r"^\S+\.(cpp|hpp):\d+:", line)]
+    seen = []
+    for line in explanation:
+        if line not in seen and line != headline:
+            seen.append(line)
+    return headline, seen[:4]
 
 
 def terminal_safe(text):
