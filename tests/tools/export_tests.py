@@ -23,6 +23,7 @@ import glob
 import json
 import os
 import re
+import shlex
 import shutil
 import subprocess
 import sys
@@ -171,10 +172,19 @@ def sh_commands(readme):
         text = f.read()
     commands = []
     for block in re.findall(r"^```(?:sh|bash|shell)\s*\n(.*?)^```", text, flags=re.S | re.M):
+        pending = ""
         for line in block.replace("\\\n", " ").splitlines():
-            line = line.strip()
-            if line and not line.startswith("#"):
-                commands.append(line)
+            if not pending and (not line.strip() or line.strip().startswith("#")):
+                continue
+            pending = pending + "\n" + line if pending else line.strip()
+            try:
+                shlex.split(pending, comments=True)    # a quoted argument may span lines
+            except ValueError:
+                continue
+            commands.append(pending)
+            pending = ""
+        if pending:
+            commands.append(pending)    # an unclosed quote: bash will say so
     return commands
 
 
