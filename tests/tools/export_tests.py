@@ -310,9 +310,13 @@ def check_preview(path, where):
         data = json.load(f)
     check(data["score"] == 0, f"{where}: the untouched kit scored {data['score']}")
     check(all(".hidden." not in t["name"] for t in data["tests"]), f"{where}: the kit graded hidden tests")
-    public = [t for t in data["tests"] if t["tags"][1] == "public"]
+    def kind(t):
+        tags = t.get("tags") or []
+        return tags[1] if len(tags) > 1 else None
+
+    public = [t for t in data["tests"] if kind(t) == "public"]
     check(len(public) > 0, f"{where}: the kit has no public test")
-    for t in public + [t for t in data["tests"] if t["tags"][1] == "render"]:
+    for t in public + [t for t in data["tests"] if kind(t) == "render"]:
         check("not implemented yet" in t["output"], f"{where}: {t['name']} does not fail politely: {t['output'][:200]}")
 
 
