@@ -298,7 +298,10 @@ namespace detail {
 // so the common case costs little more than the plain float form.
 inline std::optional<float> sphere_in_double(const ray<float>& ray_, const sphere<float>& s,
                                              const interval<float>& range) {
-    if (!sphere_inputs_valid(ray_, s)) return std::nullopt;
+    // No separate validity test (ten comparisons on every ray): NaN and
+    // infinity in any input make the discriminant, c or a root NaN or
+    // infinite, and the tests below and nearest_in_range reject those.
+    if (!(s.radius > 0)) return std::nullopt;
     vec3<double> d = convert<double>(ray_.direction);
     vec3<double> f = convert<double>(ray_.origin) - convert<double>(s.center);
     double r = s.radius;
@@ -316,10 +319,11 @@ inline std::optional<float> sphere_in_double(const ray<float>& ray_, const spher
     //     c = (sum of the other two squares) + (|f_k| - r)(|f_k| + r),
     // so the ground sphere's huge f_k meets r in a subtraction of two doubles
     // (exact by Sterbenz's lemma when they are within a factor of 2) before
-    // anything is squared. Each part is then off by at most 4 double
-    // rounding errors of its own size; when c is at least 2^26 times that
-    // bound (so t keeps 25 good bits), c is used as it is. Only otherwise
-    // (an origin within about 2^-26 of the surface in the units of its
+    // anything is squared. Each part is then off by at most 3 double
+    // rounding errors of its own size (3 * 2^-53); when |c| is at least 2^-28
+    // of the parts, c's relative error is below 3 * 2^-25, 1.5 ULPs of the
+    // float t at most, and c is used as it is. Only otherwise
+    // (an origin within about 2^-28 of the surface in the units of its
     // farthest coordinate, or an f = o - C that double could not hold) is c
     // summed again from exact pieces (exact_c). Primary rays on the ground,
     // and shadow and reflection rays leaving a surface, stay on the fast path.
@@ -334,7 +338,7 @@ inline std::optional<float> sphere_in_double(const ray<float>& ray_, const spher
     const double pair = (big - r) * (big + r);
     double c = rest + pair;
     const bool f_exact = fw[0].lo == 0 && fw[1].lo == 0 && fw[2].lo == 0;
-    if (!f_exact || !(std::fabs(c) > 0x1p-26 * (rest + std::fabs(pair)))) {
+    if (!f_exact || !(std::fabs(c) > 0x1p-28 * (rest + std::fabs(pair)))) {
         double r2 = r * r;  // exact: a float squared
         c = exact_c(fw, double_word<double>{r2, 0});
     }
