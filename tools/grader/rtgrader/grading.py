@@ -35,7 +35,7 @@ class Options:
     render_seconds: float = 60.0
     jobs: int = 2
     chapter_seconds: float = 240.0    # time budget of a chapter's tests (then the rest are skipped)
-    submission_seconds: float = 900.0  # time budget of all the tests of a submission
+    submission_seconds: float = 480.0  # time budget of a submission's tests and renders (under a Gradescope time-out)
     max_timeouts: int = 3             # a chapter's remaining tests are skipped after this many timeouts
 
 
@@ -286,7 +286,10 @@ class Grader:
             timeouts += timed_out
             results.append(self._result(name, kind, cid, passed, output))
         if ch.get("reference") and any(n[1] == "render" for n in self._names_of(ch["id"])):
-            passed, output = self._render(ch, folder, logs, out_dir, user)
+            late = time.monotonic() > self._per.deadline
+            passed, output = (False, f"not run: the submission's tests used their time budget "
+                                     f"({self.options.submission_seconds:g} s)") if late else \
+                self._render(ch, folder, logs, out_dir, user)
             results.append(self._result(f"{ch['id']}.render", "render", ch["id"], passed, output))
         return results
 
