@@ -23,7 +23,6 @@ import glob
 import json
 import os
 import re
-import shlex
 import shutil
 import subprocess
 import sys
@@ -177,14 +176,13 @@ def sh_commands(readme):
             if not pending and (not line.strip() or line.strip().startswith("#")):
                 continue
             pending = pending + "\n" + line if pending else line.strip()
-            try:
-                shlex.split(pending, comments=True)    # a quoted argument may span lines
-            except ValueError:
+            # A quoted argument or a loop may span lines: bash -n says when the command is complete.
+            if subprocess.run(["bash", "-n", "-c", pending], capture_output=True).returncode != 0:
                 continue
             commands.append(pending)
             pending = ""
         if pending:
-            commands.append(pending)    # an unclosed quote: bash will say so
+            commands.append(pending)    # incomplete: bash will say so
     return commands
 
 
