@@ -23,8 +23,11 @@ interval<T> ahead() {
     return {T(0), infinity<T>};
 }
 
+// Relative closeness; an infinite or NaN value is never near anything (a
+// tolerance scaled by |a| would otherwise let a = +inf pass).
 template <class T>
 bool near(T a, T b, T tol) {
+    if (!std::isfinite(a) || !std::isfinite(b)) return false;
     return std::fabs(a - b) <= tol * std::fmax(T(1), std::fmax(std::fabs(a), std::fabs(b)));
 }
 
