@@ -26,7 +26,4 @@ struct interval {
     static constexpr interval in_front_of_image_plane() { return {T(1), infinity<T>}; }
 };
 
-using intervalf = interval<float>;
-using intervald = interval<double>;
-
 }  // namespace rt

@@ -2,8 +2,8 @@
 //
 // Every numerical routine in the course is a template on its scalar type T,
 // so the same source can be compiled and measured in float and in double in
-// one program (chapter 07 does exactly that). These aliases keep the
-// spelling short: vec3<T> is GLM's three-component vector of T.
+// one program (chapter 07 does exactly that). The alias keeps the spelling
+// short: vec3<T> is GLM's three-component vector of T.
 //
 // Conventions, written once for the whole course:
 //   * right-handed coordinates; the camera looks down -z, +y is up;
@@ -21,7 +21,7 @@ namespace rt {
 template <class T>
 using vec3 = glm::vec<3, T, glm::defaultp>;
 
-using vec3f = vec3<float>;
+// Scene descriptions are kept in double, as written in their files.
 using vec3d = vec3<double>;
 
 // Colours are always float: they are not part of any numerical experiment.

@@ -18,7 +18,4 @@ struct ray {
     vec3<T> at(T t) const { return origin + t * direction; }
 };
 
-using rayf = ray<float>;
-using rayd = ray<double>;
-
 }  // namespace rt
