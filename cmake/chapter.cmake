@@ -192,7 +192,7 @@ function(rt_chapter number)
     endif()
   endforeach()
 
-  # The two sides share the chapter's exercise header (DESIGN.md rule 3).
+  # The two sides share the chapter's exercise header (one header per exercise: the contract both implement).
   set(student_sources "")
   foreach(f IN LISTS CH_EXERCISES)
     list(APPEND student_sources "${chapter_dir}/${f}")

@@ -1,5 +1,5 @@
 // Exact decisions: parallel, in-plane and degenerate inputs whose exact
-// determinant is 0 although the rounded one is not (issue 11). Each case is
+// determinant is 0 although the rounded one is not. Each case is
 // built so that its exact answer is known (dyadic geometry, every
 // construction step checked to be exact), and each family is checked to be
 // stiff: the plain rounded dot product or determinant is non-zero for many

@@ -211,7 +211,7 @@ def run_batch(args):
 
 def run_kit(args):
     """In a student kit the grading tree is built from the kit itself: a chapter whose file does not
-    compile must cost that chapter only (issue 9). A kit-like copy of the repository (no solutions,
+    compile must cost that chapter only. A kit-like copy of the repository (no solutions,
     hidden tests or fixtures) with the solutions of 01, 02 and 04 and a broken 03 is previewed."""
     kit = os.path.join(args.work, "kit")
     shutil.rmtree(kit, ignore_errors=True)
