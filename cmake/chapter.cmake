@@ -197,8 +197,14 @@ function(rt_chapter number)
   foreach(f IN LISTS CH_EXERCISES)
     list(APPEND student_sources "${chapter_dir}/${f}")
   endforeach()
+  # Chapter headers are included with their chapter's folder,
+  # "02-sphere/sphere.hpp", so two chapters' headers can never be mistaken
+  # for one another: users of a chapter see only chapters/ (PUBLIC). The
+  # chapter's own exercise files may still write "sphere.hpp" for their own
+  # header (PRIVATE), which is what a student's file does wherever the
+  # grader compiles it.
   add_library(${id}_student STATIC ${student_sources})
-  target_include_directories(${id}_student PUBLIC "${chapter_dir}")
+  target_include_directories(${id}_student PUBLIC "${PROJECT_SOURCE_DIR}/chapters" PRIVATE "${chapter_dir}")
   target_link_libraries(${id}_student PUBLIC rt_common ${dependency_libs})
 
   if(EXISTS "${solution_dir}")
@@ -207,7 +213,7 @@ function(rt_chapter number)
       list(APPEND solution_sources "${solution_dir}/${f}")
     endforeach()
     add_library(${id}_solution STATIC ${solution_sources})
-    target_include_directories(${id}_solution PUBLIC "${chapter_dir}")
+    target_include_directories(${id}_solution PUBLIC "${PROJECT_SOURCE_DIR}/chapters" PRIVATE "${chapter_dir}")
     target_link_libraries(${id}_solution PUBLIC rt_common ${dependency_libs})
   endif()
 

@@ -8,7 +8,7 @@
 // The shade is the sphere's colour, darker where the surface turns away
 // from the viewer, so the spheres read as round and their overlaps as depth.
 #include "scene_loop.hpp"
-#include "sphere.hpp"
+#include "02-sphere/sphere.hpp"
 
 #include "common/object_dispatch.hpp"
 #include "common/program.hpp"

@@ -11,8 +11,8 @@
 // little ambient light) so the shapes look solid; real lights and shadows
 // are chapter 06's subject.
 #include "plane.hpp"
-#include "scene_loop.hpp"
-#include "sphere.hpp"
+#include "03-scene-loop/scene_loop.hpp"
+#include "02-sphere/sphere.hpp"
 
 #include "common/object_dispatch.hpp"
 #include "common/program.hpp"

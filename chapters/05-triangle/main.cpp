@@ -15,9 +15,9 @@
 //
 // Shading is one fixed light direction (Lambert's cosine plus a little
 // ambient light); real lights and shadows are chapter 06's subject.
-#include "plane.hpp"
-#include "scene_loop.hpp"
-#include "sphere.hpp"
+#include "04-plane/plane.hpp"
+#include "03-scene-loop/scene_loop.hpp"
+#include "02-sphere/sphere.hpp"
 #include "triangle.hpp"
 
 #include "common/object_dispatch.hpp"

@@ -9,7 +9,7 @@
 // for several k) or a fixed distance (the tempting shortcut).
 //
 //   ch06-acne-study            prints one line per sphere, precision and offset
-#include "sphere.hpp"
+#include "02-sphere/sphere.hpp"
 
 #include "common/stub.hpp"
 

@@ -9,11 +9,11 @@
 // look for (README, "the expected picture"): soft falloff across each ball,
 // a small bright highlight on the glossy ones, two shadows per object on the
 // ground, and no speckles (shadow acne).
-#include "plane.hpp"
-#include "scene_loop.hpp"
+#include "04-plane/plane.hpp"
+#include "03-scene-loop/scene_loop.hpp"
 #include "shading.hpp"
-#include "sphere.hpp"
-#include "triangle.hpp"
+#include "02-sphere/sphere.hpp"
+#include "05-triangle/triangle.hpp"
 
 #include "common/object_dispatch.hpp"
 #include "common/program.hpp"

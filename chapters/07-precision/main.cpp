@@ -19,8 +19,8 @@
 // robust test in long double from the same rays, and the largest error in t
 // in ULPs of the chosen precision.
 #include "robust_sphere.hpp"
-#include "scene_loop.hpp"
-#include "sphere.hpp"
+#include "03-scene-loop/scene_loop.hpp"
+#include "02-sphere/sphere.hpp"
 
 #include "common/camera.hpp"
 #include "common/error_metrics.hpp"

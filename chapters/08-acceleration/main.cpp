@@ -19,10 +19,10 @@
 // scene and the tree and how long the build took, then the usual report line.
 #include "aabb.hpp"
 #include "bvh.hpp"
-#include "plane.hpp"
-#include "shading.hpp"
-#include "sphere.hpp"
-#include "triangle.hpp"
+#include "04-plane/plane.hpp"
+#include "06-shading/shading.hpp"
+#include "02-sphere/sphere.hpp"
+#include "05-triangle/triangle.hpp"
 
 #include "common/object_dispatch.hpp"
 #include "common/program.hpp"

@@ -1,5 +1,5 @@
 // unit_sphere.cpp — reference solution for chapter 01.
-#include "unit_sphere.hpp"
+#include "01-unit-sphere/unit_sphere.hpp"
 
 #include <cmath>
 

@@ -1,5 +1,5 @@
 // sphere.cpp — reference solution for chapter 02.
-#include "sphere.hpp"
+#include "02-sphere/sphere.hpp"
 
 #include <cmath>
 

@@ -1,5 +1,5 @@
 // scene_loop.cpp — reference solution for chapter 03.
-#include "scene_loop.hpp"
+#include "03-scene-loop/scene_loop.hpp"
 
 namespace rt::ch03 {
 

@@ -1,5 +1,5 @@
 // plane.cpp — reference solution for chapter 04.
-#include "plane.hpp"
+#include "04-plane/plane.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // triangle.cpp — reference solution for chapter 05.
-#include "triangle.hpp"
+#include "05-triangle/triangle.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // shading.cpp — reference solution for chapter 06.
-#include "shading.hpp"
+#include "06-shading/shading.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // robust_sphere.cpp — reference solution for chapter 07.
-#include "robust_sphere.hpp"
+#include "07-precision/robust_sphere.hpp"
 
 #include <algorithm>
 #include <cmath>

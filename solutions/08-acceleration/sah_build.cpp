@@ -1,5 +1,5 @@
 // sah_build.cpp — reference solution for chapter 08: the binned SAH build.
-#include "bvh.hpp"
+#include "08-acceleration/bvh.hpp"
 
 #include <algorithm>
 #include <limits>

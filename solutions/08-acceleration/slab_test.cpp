@@ -1,5 +1,5 @@
 // slab_test.cpp — reference solution for chapter 08: the robust slab test.
-#include "aabb.hpp"
+#include "08-acceleration/aabb.hpp"
 
 #include <cmath>
 

@@ -1,5 +1,5 @@
 // traversal.cpp — reference solution for chapter 08: walking the tree.
-#include "bvh.hpp"
+#include "08-acceleration/bvh.hpp"
 
 #include <cmath>
 

@@ -2,7 +2,7 @@
 //
 // Failure messages name the idea that went wrong but never the expected
 // numbers: every check is a plain bool computed beforehand.
-#include "unit_sphere.hpp"
+#include "01-unit-sphere/unit_sphere.hpp"
 
 #include "test_support.hpp"
 

@@ -4,7 +4,7 @@
 // seeded random rays checked against a long double reference. As for every
 // hidden test, a failure names the concept that went wrong and never shows
 // the expected values: each check is a bool computed first.
-#include "sphere.hpp"
+#include "02-sphere/sphere.hpp"
 
 #include "test_support.hpp"
 

@@ -6,8 +6,8 @@
 // whose record came back. The last cases use real spheres (chapter 02's
 // reference) in seeded random scenes. A failure names the concept that went
 // wrong, never the expected values.
-#include "scene_loop.hpp"
-#include "sphere.hpp"
+#include "03-scene-loop/scene_loop.hpp"
+#include "02-sphere/sphere.hpp"
 
 #include "test_support.hpp"
 

@@ -2,7 +2,7 @@
 //
 // Failure messages name the idea that went wrong but never the expected
 // numbers: every check is a plain bool computed beforehand.
-#include "plane.hpp"
+#include "04-plane/plane.hpp"
 
 #include "test_support.hpp"
 

@@ -7,7 +7,7 @@
 // sensible evaluation is exact there (axis-aligned planes, small dyadic
 // coordinates, rays whose t comes out exact): a miss on them is a wrong
 // inequality, not rounding.
-#include "triangle.hpp"
+#include "05-triangle/triangle.hpp"
 
 #include "test_support.hpp"
 

@@ -3,11 +3,11 @@
 // Failure messages name the idea that went wrong but never the expected
 // numbers: every check is a plain bool computed beforehand. Random cases use
 // fixed seeds, so a failure can be reproduced.
-#include "plane.hpp"
-#include "scene_loop.hpp"
-#include "shading.hpp"
-#include "sphere.hpp"
-#include "triangle.hpp"
+#include "04-plane/plane.hpp"
+#include "03-scene-loop/scene_loop.hpp"
+#include "06-shading/shading.hpp"
+#include "02-sphere/sphere.hpp"
+#include "05-triangle/triangle.hpp"
 
 #include "common/camera.hpp"
 #include "test_support.hpp"

@@ -18,7 +18,7 @@
 //                                        or near the silhouette 16 eps (|f| + r) / sqrt(1 - (l/r)^2)
 // Failure messages name the idea that went wrong, never the expected numbers:
 // every check is a plain bool computed beforehand.
-#include "robust_sphere.hpp"
+#include "07-precision/robust_sphere.hpp"
 
 #include "common/error_metrics.hpp"
 #include "test_support.hpp"

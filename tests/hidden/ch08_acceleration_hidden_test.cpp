@@ -20,7 +20,7 @@
 // Failure messages name the idea that went wrong, never inputs or expected
 // values: every check is a plain bool computed beforehand.
 #include "../public/ch08_scenes.hpp"
-#include "median_build.hpp"
+#include "08-acceleration/median_build.hpp"
 
 #include "test_support.hpp"
 

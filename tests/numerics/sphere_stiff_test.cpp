@@ -157,7 +157,7 @@ TEST_CASE("ground sphere: Ray Tracing Gems float is off by about 1e-2 while comp
 }
 
 #if RT_NUMERICS_HAS_CH07
-#include "robust_sphere.hpp"
+#include "07-precision/robust_sphere.hpp"
 
 namespace {
 template <class T>

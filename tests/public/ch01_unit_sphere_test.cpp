@@ -2,7 +2,7 @@
 //
 // Each case is one idea from the lecture. When a check fails, its message
 // names that idea; the numbers follow.
-#include "unit_sphere.hpp"
+#include "01-unit-sphere/unit_sphere.hpp"
 
 #include "test_support.hpp"
 

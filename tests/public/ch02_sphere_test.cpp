@@ -2,7 +2,7 @@
 //
 // Each case is one idea from the lecture. When a check fails, its message
 // names that idea; the numbers follow.
-#include "sphere.hpp"
+#include "02-sphere/sphere.hpp"
 
 #include "test_support.hpp"
 

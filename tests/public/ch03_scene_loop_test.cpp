@@ -4,7 +4,7 @@
 // "wall" that the ray crosses at one known parameter t (if that t is inside
 // the range it is asked about). That way these tests check your loop alone,
 // whatever the state of your chapter 02.
-#include "scene_loop.hpp"
+#include "03-scene-loop/scene_loop.hpp"
 
 #include "test_support.hpp"
 

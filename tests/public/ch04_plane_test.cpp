@@ -2,7 +2,7 @@
 //
 // Each case is one idea from the lecture. When a check fails, its message
 // names that idea; the numbers follow.
-#include "plane.hpp"
+#include "04-plane/plane.hpp"
 
 #include "test_support.hpp"
 

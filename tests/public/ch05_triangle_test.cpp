@@ -6,7 +6,7 @@
 // Most cases use the triangle a = (0,0,0), b = (2,0,0), c = (0,2,0) in the
 // plane z = 0 (normal (b - a) x (c - a) = (0,0,4), pointing to +z), hit by
 // rays coming straight down from z = 3, so every hit has t = 3.
-#include "triangle.hpp"
+#include "05-triangle/triangle.hpp"
 
 #include "test_support.hpp"
 

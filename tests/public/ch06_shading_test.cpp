@@ -4,9 +4,9 @@
 // names that idea; the numbers follow. The shadow tests use chapters 02 and
 // 04 to intersect their blockers (build with -DRT_STUDENT_CHAPTERS=06 to take
 // those from the reference solutions).
-#include "plane.hpp"
-#include "shading.hpp"
-#include "sphere.hpp"
+#include "04-plane/plane.hpp"
+#include "06-shading/shading.hpp"
+#include "02-sphere/sphere.hpp"
 
 #include "test_support.hpp"
 

@@ -9,7 +9,7 @@
 //
 // Every expected t below was worked out from the exact inputs with 60
 // significant digits; every input is exactly representable in float.
-#include "robust_sphere.hpp"
+#include "07-precision/robust_sphere.hpp"
 
 #include "common/error_metrics.hpp"
 #include "test_support.hpp"

@@ -5,7 +5,7 @@
 // brute force's, and on a clustered scene its expected cost (sah_cost) must
 // be lower than the median split's.
 #include "ch08_scenes.hpp"
-#include "median_build.hpp"
+#include "08-acceleration/median_build.hpp"
 
 #include "test_support.hpp"
 

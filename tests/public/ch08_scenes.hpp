@@ -8,10 +8,10 @@
 // sphere and triangle tests (chapters 02 and 05).
 #pragma once
 
-#include "aabb.hpp"
-#include "bvh.hpp"
-#include "sphere.hpp"
-#include "triangle.hpp"
+#include "08-acceleration/aabb.hpp"
+#include "08-acceleration/bvh.hpp"
+#include "02-sphere/sphere.hpp"
+#include "05-triangle/triangle.hpp"
 
 #include "common/hit_record.hpp"
 

@@ -2,7 +2,7 @@
 //
 // Most boxes here are the box [1, 2] x [1, 2] x [1, 2] or a flat or point
 // box; every input is exactly representable, so each expected entry is exact.
-#include "aabb.hpp"
+#include "08-acceleration/aabb.hpp"
 
 #include "test_support.hpp"
 

@@ -5,7 +5,7 @@
 // equals brute force's exactly (same object, same bits of t), because a BVH is
 // only a faster way to ask the same question.
 #include "ch08_scenes.hpp"
-#include "median_build.hpp"
+#include "08-acceleration/median_build.hpp"
 
 #include "test_support.hpp"
 

@@ -31,7 +31,7 @@
 #include "look.hpp"
 
 #include "common/scene.hpp"   // material_at: the checker pattern
-#include "shading.hpp"   // chapter 06's shade(), for lit scenes
+#include "06-shading/shading.hpp"   // chapter 06's shade(), for lit scenes
 
 #include "common/render.hpp"
 

@@ -2,11 +2,11 @@
 
 #include "look.hpp"
 
-#include "plane.hpp"
-#include "scene_loop.hpp"
-#include "shading.hpp"
-#include "sphere.hpp"
-#include "triangle.hpp"
+#include "04-plane/plane.hpp"
+#include "03-scene-loop/scene_loop.hpp"
+#include "06-shading/shading.hpp"
+#include "02-sphere/sphere.hpp"
+#include "05-triangle/triangle.hpp"
 
 #include "common/object_dispatch.hpp"
 #include "common/render.hpp"

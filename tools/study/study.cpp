@@ -29,7 +29,7 @@
 #include <thread>
 
 #ifdef RT_STUDY_HAS_CH07
-#include "robust_sphere.hpp"
+#include "07-precision/robust_sphere.hpp"
 #endif
 
 namespace {

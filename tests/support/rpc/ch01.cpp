@@ -1,6 +1,6 @@
 // Chapter 01's exercise functions for the judge and the runner (table.hpp explains the two halves).
 #include "table.hpp"
-#include "unit_sphere.hpp"
+#include "01-unit-sphere/unit_sphere.hpp"
 
 #if RT_RPC_DEFINES_STUBS
 namespace rt::ch01 {

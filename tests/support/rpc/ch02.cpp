@@ -1,6 +1,6 @@
 // Chapter 02's exercise functions for the judge and the runner (table.hpp explains the two halves).
 #include "table.hpp"
-#include "sphere.hpp"
+#include "02-sphere/sphere.hpp"
 
 #if RT_RPC_DEFINES_STUBS
 namespace rt::ch02 {

@@ -1,7 +1,7 @@
 // Chapter 03's exercise functions for the judge and the runner (table.hpp explains the two halves).
 // The intersector is a callback: the student's loop calls it in the runner, it runs in the judge.
 #include "table.hpp"
-#include "scene_loop.hpp"
+#include "03-scene-loop/scene_loop.hpp"
 
 #if RT_RPC_DEFINES_STUBS
 namespace rt::ch03 {

@@ -1,5 +1,5 @@
 // Chapter 04's exercise functions for the judge and the runner (table.hpp explains the two halves).
-#include "plane.hpp"
+#include "04-plane/plane.hpp"
 #include "table.hpp"
 
 #if RT_RPC_DEFINES_STUBS

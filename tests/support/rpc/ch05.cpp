@@ -1,6 +1,6 @@
 // Chapter 05's exercise functions for the judge and the runner (table.hpp explains the two halves).
 #include "table.hpp"
-#include "triangle.hpp"
+#include "05-triangle/triangle.hpp"
 
 #if RT_RPC_DEFINES_STUBS
 namespace rt::ch05 {

@@ -1,7 +1,7 @@
 // Chapter 06's exercise functions for the judge and the runner (table.hpp explains the two halves).
 // The occlusion test is a callback: the student's shade() calls it in the runner, it runs in the judge.
 #include "table.hpp"
-#include "shading.hpp"
+#include "06-shading/shading.hpp"
 
 namespace rt::ch06 {
 // shadow_ray's result travels like the course's other structs (wire.hpp).

@@ -1,5 +1,5 @@
 // Chapter 07's exercise functions for the judge and the runner (table.hpp explains the two halves).
-#include "robust_sphere.hpp"
+#include "07-precision/robust_sphere.hpp"
 #include "table.hpp"
 
 #if RT_RPC_DEFINES_STUBS

@@ -1,7 +1,7 @@
 // Chapter 08's exercise functions for the judge and the runner (table.hpp explains the two halves).
 // The tree travels whole (its nodes and order); the leaf intersector is a callback whose hit_record&
 // output travels back with its answer (wire.hpp).
-#include "bvh.hpp"
+#include "08-acceleration/bvh.hpp"
 #include "table.hpp"
 
 namespace rt::ch08 {
