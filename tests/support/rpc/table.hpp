@@ -52,8 +52,15 @@ template <class R, class... A>
 #error "compile a chapter's RPC table with RT_RPC_JUDGE, RT_RPC_RUNNER or RT_RPC_PLACEHOLDER (cmake/judge.cmake)"
 #endif
 
-#if RT_RPC_DEFINES_STUBS
-// Emits the stubs for float and double (what the tests, or the chapter's program, link against).
+#if RT_RPC_DEFINES_STUBS && defined(RT_RPC_PLACEHOLDER)
+// Emits the stand-ins for float, double and long double: the chapter's program links them too,
+// and chapter 07's program measures its error against its own test in long double.
+#define RT_RPC_FUNCTION(ns, name)                                                 \
+    [[gnu::used]] static auto* const rt_rpc_float_##name = &ns::name<float>;      \
+    [[gnu::used]] static auto* const rt_rpc_double_##name = &ns::name<double>;    \
+    [[gnu::used]] static auto* const rt_rpc_long_double_##name = &ns::name<long double>;
+#elif RT_RPC_DEFINES_STUBS
+// Emits the stubs for float and double (what the tests link against).
 #define RT_RPC_FUNCTION(ns, name)                                            \
     [[gnu::used]] static auto* const rt_rpc_float_##name = &ns::name<float>; \
     [[gnu::used]] static auto* const rt_rpc_double_##name = &ns::name<double>;
