@@ -116,7 +116,7 @@ function(rt_wrong_fixtures id chapter_dir solution_dir exercises dependency_solu
     set(target ${id}_wrong_${bug})
     string(MAKE_C_IDENTIFIER "${target}" target)
     add_executable(${target} ${sources})
-    target_include_directories(${target} PRIVATE "${chapter_dir}" "${solution_dir}")
+    target_include_directories(${target} PRIVATE "${PROJECT_SOURCE_DIR}/chapters" "${chapter_dir}" "${solution_dir}")
     target_link_libraries(${target} PRIVATE ${id}_hidden_objects rt_test_support rt_common ${dependency_solution_libs})
     set_target_properties(${target} PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/wrong")
     add_test(NAME ${id}.wrong.${bug}
