@@ -50,7 +50,7 @@ function(rt_wrong_fixtures id chapter_dir solution_dir exercises dependency_solu
   if(NOT fixture_dirs OR NOT TARGET ${id}_hidden_tests)
     return()
   endif()
-  file(GLOB hidden_sources "${PROJECT_SOURCE_DIR}/tests/hidden/${id}_*.cpp")
+  file(GLOB hidden_sources CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/tests/hidden/${id}_*.cpp")
   # The hidden tests are compiled once and linked against every fixture.
   add_library(${id}_hidden_objects OBJECT ${hidden_sources})
   target_include_directories(${id}_hidden_objects PRIVATE "$<TARGET_PROPERTY:${id}_student,INTERFACE_INCLUDE_DIRECTORIES>")
@@ -232,7 +232,7 @@ function(rt_chapter number)
 
   # Tests: every tests/<kind>/chNN_*.cpp file of the chapter.
   foreach(kind public hidden)
-    file(GLOB test_sources "${PROJECT_SOURCE_DIR}/tests/${kind}/${id}_*.cpp")
+    file(GLOB test_sources CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/tests/${kind}/${id}_*.cpp")
     if(NOT test_sources)
       continue()
     endif()
@@ -263,7 +263,7 @@ function(rt_chapter number)
   # On a solution build, check the untouched student side as well: it must
   # compile, link, and fail with "not implemented yet", never crash or hang.
   if(side STREQUAL "solutions" AND TARGET ${id}_public_tests)
-    file(GLOB public_sources "${PROJECT_SOURCE_DIR}/tests/public/${id}_*.cpp")
+    file(GLOB public_sources CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/tests/public/${id}_*.cpp")
     add_executable(${id}_public_tests_stub ${public_sources})
     target_link_libraries(${id}_public_tests_stub PRIVATE ${id}_student rt_test_support)
     set_target_properties(${id}_public_tests_stub PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/stub")

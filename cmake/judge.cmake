@@ -65,7 +65,7 @@ function(rt_chapter_judge id chapter_dir depends dependency_libs)
 
   set(json "  \"runner\": \"$<TARGET_FILE:${id}_runner>\"")
   foreach(kind public hidden)
-    file(GLOB test_sources "${PROJECT_SOURCE_DIR}/tests/${kind}/${id}_*.cpp")
+    file(GLOB test_sources CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/tests/${kind}/${id}_*.cpp")
     if(NOT test_sources)
       continue()
     endif()
