@@ -125,7 +125,9 @@ TEST_CASE_TEMPLATE("listing the objects in any order gives the same hit", T, RT_
             std::vector<int> tags(static_cast<size_t>(n));
             std::iota(tags.begin(), tags.end(), 0);
             auto first = closest_hit<T>(n, walls_at(walls, tags), forward<T>(), ahead<T>());
-            const int first_tag = first ? tags[size_t(first->object)] : -1;
+            // A wrong answer may carry any object index: look it up only when it is one of ours.
+            const bool first_valid = first && first->object >= 0 && first->object < n;
+            const int first_tag = first_valid ? tags[size_t(first->object)] : -1;
             // The same objects, shuffled: the surface hit (its tag) and t must not change.
             std::vector<size_t> order(static_cast<size_t>(n));
             std::iota(order.begin(), order.end(), size_t(0));
@@ -138,7 +140,7 @@ TEST_CASE_TEMPLATE("listing the objects in any order gives the same hit", T, RT_
             }
             auto again = closest_hit<T>(n, walls_at(shuffled_walls, shuffled_tags), forward<T>(), ahead<T>());
             const bool same_miss = !first && !again;
-            const bool same_hit = first && again && first->t == again->t && again->object >= 0 &&
+            const bool same_hit = first_valid && again && first->t == again->t && again->object >= 0 &&
                                   again->object < n && first_tag == int(again->normal.x) &&
                                   shuffled_tags[size_t(again->object)] == first_tag;
             ok = (same_miss || same_hit) && is_nearest(first, walls, ahead<T>());
