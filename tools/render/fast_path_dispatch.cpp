@@ -33,6 +33,9 @@ namespace {
 enum class isa { baseline, avx2, avx512 };
 
 bool cpu_has(isa i) {
+#if RT_FAST_BASELINE_ONLY
+    return i == isa::baseline;  // the sanitizer build compiles the plain copy only
+#endif
     __builtin_cpu_init();
     switch (i) {
         case isa::baseline: return true;
@@ -68,12 +71,18 @@ isa chosen() {
 
 const char* fast_path_isa() { return name_of(chosen()); }
 
+#if RT_FAST_BASELINE_ONLY
+#define RT_DISPATCH(call)  \
+    (void)chosen();        \
+    return isa_baseline::call;
+#else
 #define RT_DISPATCH(call)                                        \
     switch (chosen()) {                                          \
         case isa::avx512: return isa_avx512::call;               \
         case isa::avx2: return isa_avx2::call;                   \
         default: return isa_baseline::call;                      \
     }
+#endif
 
 image render_fast(const scene_description& d, const scene_plan& plan, int width, int height, long& rays) {
     RT_DISPATCH(render_fast(d, plan, width, height, rays))
