@@ -16,9 +16,30 @@
 #include <cstddef>
 #include <limits>
 #include <string>
+#include <time.h>
 #include <vector>
 
 namespace rt::study {
+
+// The CPU time this thread has used. The machine that runs the study is
+// often shared: with a wall clock every time the scheduler takes the core
+// away lands in the measurement (at a load of 15 on 2 cores, most of it),
+// the plain quadratic's 6 ns per test read as 30, and ratios between
+// formulations shrink towards 1. The thread's CPU time leaves that out.
+class cpu_stopwatch {
+public:
+    cpu_stopwatch() : start_(now()) {}
+    double seconds() const { return (now() - start_) * 1e-9; }
+    double nanoseconds() const { return now() - start_; }
+
+private:
+    static double now() {
+        timespec t{};
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+        return double(t.tv_sec) * 1e9 + double(t.tv_nsec);
+    }
+    double start_;
+};
 
 struct error_summary {
     std::size_t count = 0;  // hits on the right root that were compared
@@ -169,8 +190,8 @@ outcome evaluate(const family<Q>& fam, const std::vector<reference_answer>& refs
 }
 
 // Nanoseconds per test of a batch loop over (an evenly spaced sample of up
-// to max_queries of) the family's queries: the batch is repeated long enough per run, and the
-// median, minimum and maximum over runs are reported.
+// to max_queries of) the family's queries: the batch is repeated long enough per run (in
+// this thread's CPU time), and the median, minimum and maximum over runs are reported.
 template <class Q, class Batch>
 timing_summary time_batch(const family<Q>& fam, Batch batch, const timing_options& opt) {
     std::size_t n = std::min(fam.queries.size(), opt.max_queries);
@@ -181,13 +202,13 @@ timing_summary time_batch(const family<Q>& fam, Batch batch, const timing_option
     for (std::size_t i = 0; i < n; ++i) sample.push_back(fam.queries[i * fam.queries.size() / n]);
     const Q* data = sample.data();
     volatile double sink = batch(data, n);  // warm up: data and code into cache
-    stopwatch once;
+    cpu_stopwatch once;
     sink = sink + batch(data, n);
     double one = std::max(once.seconds(), 1e-7);
     int reps = std::max(1, static_cast<int>(opt.seconds_per_run / one));
     std::vector<double> samples;
     for (int r = 0; r < opt.runs; ++r) {
-        stopwatch sw;
+        cpu_stopwatch sw;
         double acc = 0;
         for (int k = 0; k < reps; ++k) acc += batch(data, n);
         samples.push_back(sw.nanoseconds() / (double(reps) * double(n)));

@@ -41,6 +41,13 @@ inline double_word<T> two_sum(T a, T b) {
     return {s, e};
 }
 
+// The error term of two_sum alone, for a sum s = fl(a + b) already at hand.
+template <class T>
+inline T two_sum_error(T a, T b, T s) {
+    T bb = s - a;
+    return (a - (s - bb)) + (b - bb);
+}
+
 // Only when |a| >= |b| (or a == 0): three operations instead of six.
 template <class T>
 inline double_word<T> fast_two_sum(T a, T b) {

@@ -179,6 +179,12 @@ T exact_c(const double_word<T> (&f)[3], double_word<T> r2) {
     return sum_k3(terms);
 }
 
+// exact_c for float data in double, kept out of line: only origins within
+// about 2^-28 of the surface need it.
+[[gnu::noinline, gnu::cold]] inline double exact_c_cold(const double_word<double> (&f)[3], double r2) {
+    return exact_c(f, double_word<double>{r2, 0});
+}
+
 // exact_c for the compensated form. Float's triple precision (72 bits) is
 // not enough when c is 2^-55 of f.f (a shadow ray leaving a sphere of radius
 // 1e6): float data sums its exact pieces in double instead (each piece is a
@@ -289,61 +295,119 @@ std::optional<T> sphere_compensated(const ray<T>& ray_, const sphere<T>& s, cons
 }
 
 namespace detail {
+// The roots of the stable pair, rounded to float once, the near one first:
+// for h < 0 (q > 0) c/q <= q/a, for h >= 0 (q < 0) q/a <= c/q. A ray that
+// meets the sphere ahead of it needs one division, not two (a double
+// division is the slowest step of the test). Needs disc > 0 (so q != 0).
+inline std::optional<float> near_root_first(double a, double h, double c, double disc, const interval<float>& range) {
+    const double q = -(h + std::copysign(std::sqrt(disc), h));
+    const bool c_first = h < 0;
+    const float near = to_float(c_first ? c / q : q / a);
+    if (range.contains(near)) return near;
+    const float far = to_float(c_first ? q / a : c / q);
+    if (range.contains(far)) return far;
+    return std::nullopt;
+}
+
+// A grazing ray: the discriminant cancelled more than 26 of double's 53
+// bits, too few left for float's 24. Kept out of line (and marked cold) so
+// that the common path stays small.
+[[gnu::noinline, gnu::cold]] inline std::optional<float> sphere_grazing_in_double_word(const ray<float>& ray_,
+                                                                                   const sphere<float>& s,
+                                                                                   const interval<float>& range) {
+    return sphere_float_in_double_word(ray_, s, range);
+}
+
+// c = f.f - r^2 for an origin near the surface, where the plain sum of
+// squares has cancelled (second stage). With k the axis where |f| is
+// largest,
+//     c = (sum of the other two squares) + (|f_k| - r)(|f_k| + r),
+// so the ground sphere's huge f_k meets r in a subtraction of two doubles
+// (exact by Sterbenz's lemma when they are within a factor of 2) before
+// anything is squared. The smallest of the three sums of two squares is the
+// one that leaves the largest component out: no branch picks k. What f = o - C
+// lost in double (its two_sum error, lo) enters to first order, 2 f.lo.
+// Each part is off by at most about 2 double rounding errors of its own
+// size; the result is used when those errors stay below 2^-25 of c (1 ULP
+// of the float t at most). Exactly-computed parts (an origin exactly on the
+// surface: c = 0 with no error at all) pass too. Only the rest (origins
+// within about 2^-28 of the surface in units of the farthest coordinate)
+// is summed again from exact pieces (exact_c), unless only the sign of c
+// matters (out_of_range_sign: a c of that sign puts the root c/q outside
+// the range).
+inline double c_near_surface(const vec3<float>& o, const sphere<float>& s, const vec3<double>& f, double out_of_range_sign) {
+    const vec3<float>& C = s.center;
+    const double r = s.radius;
+    const double lx = two_sum_error(double(o.x), -double(C.x), f.x), ly = two_sum_error(double(o.y), -double(C.y), f.y),
+                 lz = two_sum_error(double(o.z), -double(C.z), f.z);
+    const double x2 = f.x * f.x, y2 = f.y * f.y, z2 = f.z * f.z;
+    const double rest = std::min(std::min(y2 + z2, x2 + z2), x2 + y2);
+    const double big = std::max(std::max(std::fabs(f.x), std::fabs(f.y)), std::fabs(f.z));
+    const double pair = (big - r) * (big + r);
+    if ((lx == 0) & (ly == 0) & (lz == 0)) {  // f exact: the usual case
+        const double c = rest + pair;
+        if (0x1p-28 * (rest + std::fabs(pair)) <= std::fabs(c)) return c;
+        if (out_of_range_sign * c > 0x1p-49 * (rest + std::fabs(pair))) return c;
+        const double_word<double> fw[3] = {{f.x, 0}, {f.y, 0}, {f.z, 0}};
+        return exact_c_cold(fw, r * r);
+    }
+    const double lost = 2 * (f.x * lx + f.y * ly + f.z * lz);
+    const double c = (rest + lost) + pair;
+    // Bounds of the error: 2^-51 (rest + |pair|) from the roundings, 2^-51 |lost|
+    // from lost's own rounding, lo.lo (left out) at most (|lx| + |ly| + |lz|)^2.
+    const double lo_sum = std::fabs(lx) + std::fabs(ly) + std::fabs(lz);
+    const double lo2 = lo_sum * lo_sum;
+    if (0x1p-28 * (rest + std::fabs(pair)) + 0x1p-26 * std::fabs(lost) + 0x1p25 * lo2 <= std::fabs(c)) return c;
+    // Only c's sign matters when it puts the root c/q behind the range (a
+    // shadow ray leaving a surface from a hair outside it): then a c whose
+    // sign is certain will do.
+    if (out_of_range_sign * c > 0x1p-49 * (rest + std::fabs(pair) + std::fabs(lost)) + 2 * lo2) return c;
+    const double_word<double> fw[3] = {{f.x, lx}, {f.y, ly}, {f.z, lz}};
+    return exact_c_cold(fw, r * r);
+}
+
 // Float inputs, double arithmetic: a product of two floats is exact in
 // double and a difference of two floats almost always is, so f, f x d and
 // c lose (almost) nothing; the roots are rounded to float once, at the end.
-// Two quantities can still cancel beyond double's reserve: c (seen from
-// 1e-3 above a sphere of radius 1e7, f.f and r^2 share 33 bits) and the
-// discriminant of a grazing ray. Only those rays take a slower exact path,
-// so the common case costs little more than the plain float form.
-inline std::optional<float> sphere_in_double(const ray<float>& ray_, const sphere<float>& s,
+// Two quantities can still cancel beyond double's reserve: c (an origin on or
+// near the surface: shadow and reflection rays, or 1e-3 above a sphere of
+// radius 1e7) and the discriminant of a grazing ray. Only those rays take a
+// slower path, so the common case costs little more than the plain float form.
+// Always inlined: GCC would otherwise call it, and the call costs as much as
+// a third of the plain float test.
+[[gnu::always_inline]] inline std::optional<float> sphere_in_double(const ray<float>& ray_, const sphere<float>& s,
                                              const interval<float>& range) {
     // No separate validity test (ten comparisons on every ray): NaN and
     // infinity in any input make the discriminant, c or a root NaN or
-    // infinite, and the tests below and nearest_in_range reject those.
+    // infinite, and the tests below and near_root_first reject those.
     if (!(s.radius > 0)) return std::nullopt;
-    vec3<double> d = convert<double>(ray_.direction);
-    vec3<double> f = convert<double>(ray_.origin) - convert<double>(s.center);
-    double r = s.radius;
-    double a = dot(d, d);
+    const vec3<double> d = convert<double>(ray_.direction);
+    const vec3<double> f = convert<double>(ray_.origin) - convert<double>(s.center);
+    const double r = s.radius, r2 = r * r;  // r2 exact: a float squared
+    const double a = dot(d, d);
     if (!(a > 0)) return std::nullopt;
-    double h = dot(f, d);
-    vec3<double> g = cross(f, d);
-    double ar2 = a * (r * r), disc = ar2 - dot(g, g);
-    if (!(disc >= 0)) return std::nullopt;
-    // A grazing ray: the discriminant cancelled more than 26 of double's 53
-    // bits, too few left for float's 24. Only then, double-double.
-    if (disc < ar2 * 0x1p-26) return sphere_float_in_double_word(ray_, s, range);
-    // c = f.f - r^2, cheaply and accurately for the rays a renderer sends
-    // most: with k the axis where |f| is largest,
-    //     c = (sum of the other two squares) + (|f_k| - r)(|f_k| + r),
-    // so the ground sphere's huge f_k meets r in a subtraction of two doubles
-    // (exact by Sterbenz's lemma when they are within a factor of 2) before
-    // anything is squared. Each part is then off by at most 3 double
-    // rounding errors of its own size (3 * 2^-53); when |c| is at least 2^-28
-    // of the parts, c's relative error is below 3 * 2^-25, 1.5 ULPs of the
-    // float t at most, and c is used as it is. Only otherwise
-    // (an origin within about 2^-28 of the surface in the units of its
-    // farthest coordinate, or an f = o - C that double could not hold) is c
-    // summed again from exact pieces (exact_c). Primary rays on the ground,
-    // and shadow and reflection rays leaving a surface, stay on the fast path.
-    const vec3<float>& o = ray_.origin;
-    const vec3<float>& C = s.center;
-    double_word<double> fw[3] = {two_sum(double(o.x), -double(C.x)), two_sum(double(o.y), -double(C.y)),
-                                 two_sum(double(o.z), -double(C.z))};
-    const double fx = std::fabs(f.x), fy = std::fabs(f.y), fz = std::fabs(f.z);
-    const int k = fx >= fy ? (fx >= fz ? 0 : 2) : (fy >= fz ? 1 : 2);
-    const double big = k == 0 ? fx : (k == 1 ? fy : fz);
-    const double rest = k == 0 ? f.y * f.y + f.z * f.z : (k == 1 ? f.x * f.x + f.z * f.z : f.x * f.x + f.y * f.y);
-    const double pair = (big - r) * (big + r);
-    double c = rest + pair;
-    const bool f_exact = fw[0].lo == 0 && fw[1].lo == 0 && fw[2].lo == 0;
-    if (!f_exact || !(std::fabs(c) > 0x1p-28 * (rest + std::fabs(pair)))) {
-        double r2 = r * r;  // exact: a float squared
-        c = exact_c(fw, double_word<double>{r2, 0});
+    const double h = dot(f, d);
+    const vec3<double> g = cross(f, d);
+    const double ar2 = a * r2, disc = ar2 - dot(g, g);
+    if (!(disc >= ar2 * 0x1p-26)) {  // one test on the common path
+        if (!(disc >= 0)) return std::nullopt;
+        return sphere_grazing_in_double_word(ray_, s, range);
     }
-    auto [t0, t1] = stable_roots(a, h, c, disc);
-    return nearest_in_range(to_float(t0), to_float(t1), range);
+    // c = f.f - r^2 plainly. f = o - C is off by at most 2^-53 of each
+    // component and each square and sum by 2^-53 of its size, so c is off by
+    // at most about 6 * 2^-53 f.f. When |c| is at least 2^-27 of f.f that is
+    // below 2^-23.4 of c (at most 1 ULP of the float t), and c is used as it
+    // is: every ray that does not start within about 2^-27 |f| of the surface.
+    const double ff = dot(f, f);
+    double c = ff - r2;
+    if (!(std::fabs(c) >= 0x1p-27 * ff)) {
+        // q has the sign of -h, so for h >= 0 a c > 0 makes the root c/q
+        // negative, and for h < 0 a c < 0 does; a range that starts at 0 or
+        // later never holds it.
+        const double out_of_range_sign = range.min >= 0 ? (h >= 0 ? 1.0 : -1.0) : 0.0;
+        c = c_near_surface(ray_.origin, s, f, out_of_range_sign);
+    }
+    return near_root_first(a, h, c, disc, range);
 }
 }  // namespace detail
 
@@ -352,7 +416,7 @@ inline std::optional<float> sphere_in_double(const ray<float>& ray_, const spher
 // double data it is double-double, which is exactly what the compensated
 // form computes, so the double case calls it.
 template <class T>
-std::optional<T> sphere_mixed(const ray<T>& ray_, const sphere<T>& s, const interval<T>& range) {
+[[gnu::always_inline]] inline std::optional<T> sphere_mixed(const ray<T>& ray_, const sphere<T>& s, const interval<T>& range) {
     if constexpr (sizeof(T) == sizeof(float))
         return detail::sphere_in_double(ray_, s, range);
     else
