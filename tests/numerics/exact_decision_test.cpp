@@ -153,3 +153,128 @@ TEST_CASE_TEMPLATE("exact_orientation_sign agrees with integer arithmetic on sma
         CHECK(fm::exact_orientation_sign(V(0), V(3), V(6), V(9)) == (det > 0) - (det < 0));
     }
 }
+
+// ---------------------------------------------------------------------------
+// The renderer's plane and triangle kernels (tools/render/fast_path_kernels.hpp)
+// make the same decisions, driven as fast_path.cpp drives them: the lane
+// function first, the exact one for the lanes it was unsure of. Where the
+// exact value is not 0 they must give the plain formula's very bits.
+#if __has_include("fast_path_kernels.hpp")
+#include "fast_path_kernels.hpp"
+
+namespace rk = rt::render_tool;
+
+namespace render_kernels {
+
+// The plane kernel as a lane of fast_path.cpp runs it.
+template <class T>
+T plane_lane(const vec3<T>& point, const vec3<T>& n, const ray<T>& r, T tmin) {
+    const T num = n.x * (point.x - r.origin.x) + n.y * (point.y - r.origin.y) + n.z * (point.z - r.origin.z);
+    int unsure = 0;
+    const T t = rk::plane_t(num, n.x, n.y, n.z, r.direction.x, r.direction.y, r.direction.z, tmin, unsure);
+    return unsure ? rk::plane_t_exact(num, n.x, n.y, n.z, r.direction.x, r.direction.y, r.direction.z, tmin) : t;
+}
+
+// The plain quotient, without any decision: what the kernel computed before.
+template <class T>
+T plane_plain(const vec3<T>& point, const vec3<T>& n, const ray<T>& r) {
+    const T num = n.x * (point.x - r.origin.x) + n.y * (point.y - r.origin.y) + n.z * (point.z - r.origin.z);
+    return num / (n.x * r.direction.x + n.y * r.direction.y + n.z * r.direction.z);
+}
+
+// The triangle kernel as a lane of fast_path.cpp runs it (corner a, edges
+// e1 = b - a and e2 = c - a as the renderer stores them); bound < 0 gives
+// Moeller-Trumbore without the decision.
+template <class T>
+T triangle_lane(const vec3<T>& a, const vec3<T>& e1, const vec3<T>& e2, const ray<T>& r, T tmin, bool decide = true) {
+    const vec3<T> s = r.origin - a, q = cross(s, e1), d = r.direction;
+    const T bound = decide ? rk::flat_scale(e1.x, e1.y, e1.z, e2.x, e2.y, e2.z) * rk::direction_max(d.x, d.y, d.z) +
+                                 rk::flat_tiny<T>()
+                           : T(-1);
+    int unsure = 0;
+    const T t = rk::triangle_t(s.x, s.y, s.z, q.x, q.y, q.z, e1.x, e1.y, e1.z, e2.x, e2.y, e2.z, d.x, d.y, d.z, tmin,
+                               bound, unsure);
+    if (!unsure) return t;
+    return rk::triangle_t_exact(s.x, s.y, s.z, q.x, q.y, q.z, e1.x, e1.y, e1.z, e2.x, e2.y, e2.z, d.x, d.y, d.z, tmin);
+}
+
+}  // namespace render_kernels
+
+TEST_CASE_TEMPLATE("render plane kernel: exactly parallel and in-plane rays miss although the rounded d.n is not 0",
+                   T, RT_SCALARS) {
+    // d.n = 0 exactly, rounded d.n = 2^-(2h+1) (exact_sign.hpp's pair).
+    const int h = std::numeric_limits<T>::digits / 2 + 1;
+    const vec3<T> d(1 + std::ldexp(T(1), -h), 1 + std::ldexp(T(1), -h) + std::ldexp(T(1), -h - 1),
+                    std::ldexp(T(1), -2 * h - 1));
+    const vec3<T> n(-(1 + std::ldexp(T(1), -h - 1)), 1, 1), o(0, 0, 0);
+    const ray<T> r{o, d};
+    REQUIRE(fm::exact_dot_sign(d, n) == 0);
+    REQUIRE_MESSAGE(dot(d, n) != T(0), "stiff: the rounded d.n is not 0");
+    // Parallel, one unit off the plane (its point (0, 0, 1)): the plain
+    // quotient is a huge positive t, a false hit.
+    const vec3<T> off(0, 0, 1);
+    REQUIRE(render_kernels::plane_plain(off, n, r) > T(0));
+    CHECK(render_kernels::plane_lane(off, n, r, T(0)) == infinity<T>);
+    // In the plane (it goes through o + d): num and d.n are the same rounded
+    // number, so the plain quotient is 1, a false hit.
+    REQUIRE(render_kernels::plane_plain(d, n, r) == T(1));
+    CHECK(render_kernels::plane_lane(d, n, r, T(0)) == infinity<T>);
+    // Not parallel (the last component 3/2 of the lost term: exact d.n =
+    // 2^-(2h+2) > 0): the kernel's t is the plain quotient, bit for bit.
+    const vec3<T> d2(d.x, d.y, T(1.5) * d.z);
+    REQUIRE(fm::exact_dot_sign(d2, n) == 1);
+    const T plain = render_kernels::plane_plain(off, n, ray<T>{o, d2});
+    CHECK(render_kernels::plane_lane(off, n, ray<T>{o, d2}, T(0)) == (plain > T(0) ? plain : infinity<T>));
+}
+
+TEST_CASE_TEMPLATE("render triangle kernel: in-plane rays and degenerate triangles miss, other answers keep their bits",
+                   T, RT_SCALARS) {
+    std::mt19937 rng(23);
+    int in_plane = 0, degenerate = 0, stiff = 0, plain_false_hits = 0, false_hits = 0;
+    for (int i = 0; i < 1000; ++i) {
+        const vec3<T> a = full_point<T>(rng), e1 = dyadic<T>(rng), f = dyadic<T>(rng);
+        const bool flat = i % 2 == 1;  // degenerate: e2 = 3 e1
+        const vec3<T> e2 = flat ? T(3) * e1 : f;
+        if (!sum_is_exact(a, e1) || !sum_is_exact(a, e2)) continue;
+        vec3<T> o, d;
+        if (flat) {  // any ray through the segment's line: aimed at a + 2 e1 (rounded)
+            o = full_point<T>(rng) + vec3<T>(0, 0, 2);
+            d = (a + T(2) * e1) - o;
+        } else {  // in the plane: origin a + e2/2 - e1, direction e1 + e2/4, both exact
+            o = a + T(0.5) * e2 - e1;
+            d = e1 + T(0.25) * e2;
+            if (!sum_is_exact(a, T(0.5) * e2) || !sum_is_exact(a + T(0.5) * e2, -e1) || !sum_is_exact(e1, T(0.25) * e2))
+                continue;
+        }
+        REQUIRE(fm::exact_orientation_sign(d, vec3<T>(0), e1, e2) == 0);
+        ++(flat ? degenerate : in_plane);
+        stiff += dot(e1, cross(d, e2)) != T(0);
+        const ray<T> r{o, d};
+        plain_false_hits += render_kernels::triangle_lane(a, e1, e2, r, T(0), false) != infinity<T>;
+        false_hits += render_kernels::triangle_lane(a, e1, e2, r, T(0)) != infinity<T>;
+    }
+    MESSAGE("in plane " << in_plane << ", degenerate " << degenerate << ", rounded determinant not 0 in " << stiff
+                        << ", false hits without the exact decision " << plain_false_hits);
+    REQUIRE(in_plane >= 100);
+    REQUIRE(degenerate >= 100);
+    if constexpr (std::is_same_v<T, float>) REQUIRE_MESSAGE(stiff >= 20, "stiff: rounded determinants that are not 0");
+    // The family catches the trap: without the decision some of these rays hit.
+    CHECK(plain_false_hits > 0);
+    CHECK(false_hits == 0);
+
+    // Ordinary triangles and rays: the decision never changes an answer.
+    int hits = 0, differ = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const vec3<T> a = full_point<T>(rng), e1 = full_point<T>(rng) - vec3<T>(T(0.75)),
+                      e2 = full_point<T>(rng) - vec3<T>(T(0.75)), o = full_point<T>(rng) + vec3<T>(0, 0, 3);
+        const vec3<T> d = (a + T(0.3) * e1 + T(0.3) * e2) - o;
+        const ray<T> r{o, d};
+        const T with = render_kernels::triangle_lane(a, e1, e2, r, T(0));
+        const T without = render_kernels::triangle_lane(a, e1, e2, r, T(0), false);
+        hits += with != infinity<T>;
+        differ += !(with == without || (std::isnan(with) && std::isnan(without)));
+    }
+    CHECK(hits > 1000);
+    CHECK(differ == 0);
+}
+#endif

@@ -34,6 +34,7 @@
 #include "06-shading/shading.hpp"   // chapter 06's shade(), for lit scenes
 
 #include "common/render.hpp"
+#include "fast_path_kernels.hpp"  // the plane and triangle kernels
 
 #include <algorithm>
 #include <atomic>
@@ -331,26 +332,6 @@ inline T sphere_t(T fx, T fy, T fz, T c, T rr, T dx, T dy, T dz, T a, T inv_a, T
     return ((disc >= T(0)) & (t > tmin)) ? t : infinity<T>;
 }
 
-// One plane against one ray; num = n . (point - origin).
-template <class T>
-inline T plane_t(T num, T nx, T ny, T nz, T dx, T dy, T dz, T tmin) {
-    const T t = num / (nx * dx + ny * dy + nz * dz);  // parallel: +-inf or NaN, both rejected
-    return t > tmin ? t : infinity<T>;
-}
-
-// One triangle against one ray (Moeller-Trumbore). s = origin - a and
-// q = s x e1 depend only on the origin and the triangle.
-template <class T>
-inline T triangle_t(T sx, T sy, T sz, T qx, T qy, T qz, T e1x, T e1y, T e1z, T e2x, T e2y, T e2z, T dx, T dy, T dz,
-                    T tmin) {
-    const T px = dy * e2z - dz * e2y, py = dz * e2x - dx * e2z, pz = dx * e2y - dy * e2x;
-    const T inv_det = T(1) / (e1x * px + e1y * py + e1z * pz);
-    const T u = (sx * px + sy * py + sz * pz) * inv_det;
-    const T v = (dx * qx + dy * qy + dz * qz) * inv_det;
-    const T t = (e2x * qx + e2y * qy + e2z * qz) * inv_det;
-    // Edges count as inside; NaN (a degenerate triangle) fails every test.
-    return ((u >= T(0)) & (v >= T(0)) & (u + v <= T(1)) & (t > tmin)) ? t : infinity<T>;
-}
 
 // The closest hit of each ray of a packet: tbest[k] and object[k] (-1 for
 // a miss). Objects are numbered spheres, then planes, then triangles.
@@ -359,11 +340,12 @@ void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, i
     using I = index_t<T>;
     // Local arrays, copied out at the end: the compiler may then keep them
     // in registers for the whole object loop.
-    alignas(64) T a[W], inv_a[W], best_t[W];
+    alignas(64) T a[W], inv_a[W], best_t[W], d_max[W];
     alignas(64) I best[W];
     for (int k = 0; k < W; ++k) {
         a[k] = p.dx[k] * p.dx[k] + p.dy[k] * p.dy[k] + p.dz[k] * p.dz[k];
         inv_a[k] = T(1) / a[k];
+        d_max[k] = direction_max(p.dx[k], p.dy[k], p.dz[k]);
         best_t[k] = infinity<T>;
         best[k] = -1;
     }
@@ -422,11 +404,18 @@ void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, i
         const I base = I(s.sphere_count);
         for (size_t i = 0; i < s.plane_count; ++i) {
             const T nx = s.nx[i], ny = s.ny[i], nz = s.nz[i];
+            int unsure = 0;
             for (int k = 0; k < W; ++k) {
                 const int o = CommonOrigin ? 0 : k;
                 const T num = nx * (s.px[i] - p.ox[o]) + ny * (s.py[i] - p.oy[o]) + nz * (s.pz[i] - p.oz[o]);
-                keep(k, plane_t(num, nx, ny, nz, p.dx[k], p.dy[k], p.dz[k], tmin), base + I(i));
+                keep(k, plane_t(num, nx, ny, nz, p.dx[k], p.dy[k], p.dz[k], tmin, unsure), base + I(i));
             }
+            if (unsure)  // a ray nearly or exactly parallel: decide exactly (keep takes a t once)
+                for (int k = 0; k < W; ++k) {
+                    const int o = CommonOrigin ? 0 : k;
+                    const T num = nx * (s.px[i] - p.ox[o]) + ny * (s.py[i] - p.oy[o]) + nz * (s.pz[i] - p.oz[o]);
+                    keep(k, plane_t_exact(num, nx, ny, nz, p.dx[k], p.dy[k], p.dz[k], tmin), base + I(i));
+                }
         }
     }
     if constexpr (Tris) {
@@ -445,13 +434,15 @@ void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, i
                                                                            p.dz[k], a[k], inv_a[k]) >= T(0));
             }
             if (!near_any) continue;
+            const T scale = flat_scale(e1x, e1y, e1z, e2x, e2y, e2z), tiny = flat_tiny<T>();
+            int unsure = 0;
             if constexpr (CommonOrigin) {
                 const T sx = p.ox[0] - s.ax[i], sy = p.oy[0] - s.ay[i], sz = p.oz[0] - s.az[i];
                 const T qx = sy * e1z - sz * e1y, qy = sz * e1x - sx * e1z, qz = sx * e1y - sy * e1x;
                 for (int k = 0; k < W; ++k)
                     keep(k,
                          triangle_t(sx, sy, sz, qx, qy, qz, e1x, e1y, e1z, e2x, e2y, e2z, p.dx[k], p.dy[k], p.dz[k],
-                                    tmin),
+                                    tmin, scale * d_max[k] + tiny, unsure),
                          base + I(i));
             } else {
                 for (int k = 0; k < W; ++k) {
@@ -459,10 +450,20 @@ void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, i
                     const T qx = sy * e1z - sz * e1y, qy = sz * e1x - sx * e1z, qz = sx * e1y - sy * e1x;
                     keep(k,
                          triangle_t(sx, sy, sz, qx, qy, qz, e1x, e1y, e1z, e2x, e2y, e2z, p.dx[k], p.dy[k], p.dz[k],
-                                    tmin),
+                                    tmin, scale * d_max[k] + tiny, unsure),
                          base + I(i));
                 }
             }
+            if (unsure)  // nearly parallel or degenerate: decide exactly (keep takes a t once)
+                for (int k = 0; k < W; ++k) {
+                    const int o = CommonOrigin ? 0 : k;
+                    const T sx = p.ox[o] - s.ax[i], sy = p.oy[o] - s.ay[i], sz = p.oz[o] - s.az[i];
+                    const T qx = sy * e1z - sz * e1y, qy = sz * e1x - sx * e1z, qz = sx * e1y - sy * e1x;
+                    keep(k,
+                         triangle_t_exact(sx, sy, sz, qx, qy, qz, e1x, e1y, e1z, e2x, e2y, e2z, p.dx[k], p.dy[k],
+                                          p.dz[k], tmin),
+                         base + I(i));
+                }
         }
       };
       if (s.tree)
@@ -489,6 +490,7 @@ bool any_hit(const soa_scene<T>& s, const ray<T>& r, T tmin, T tmax) {
     const T ox = r.origin.x, oy = r.origin.y, oz = r.origin.z;
     const T dx = r.direction.x, dy = r.direction.y, dz = r.direction.z;
     const T a = dx * dx + dy * dy + dz * dz, inv_a = T(1) / a;
+    const T d_max = direction_max(dx, dy, dz);
     if constexpr (SM != sphere_mode::none) {
         // With a tree: only the leaves whose boxes the ray crosses, one object at a time.
         if (s.tree) {
@@ -517,12 +519,17 @@ bool any_hit(const soa_scene<T>& s, const ray<T>& r, T tmin, T tmax) {
     }
     if constexpr (Planes) {
         for (size_t i = 0; i < round_up(s.plane_count); i += G) {
-            int blocked = 0;
+            int blocked = 0, unsure = 0;
             for (int k = 0; k < G; ++k) {
                 const size_t j = i + size_t(k);
                 const T num = s.nx[j] * (s.px[j] - ox) + s.ny[j] * (s.py[j] - oy) + s.nz[j] * (s.pz[j] - oz);
-                blocked |= int(plane_t(num, s.nx[j], s.ny[j], s.nz[j], dx, dy, dz, tmin) < tmax);
+                blocked |= int(plane_t(num, s.nx[j], s.ny[j], s.nz[j], dx, dy, dz, tmin, unsure) < tmax);
             }
+            if (unsure && !blocked)  // nearly parallel: decide exactly
+                for (size_t j = i; j < i + G; ++j) {
+                    const T num = s.nx[j] * (s.px[j] - ox) + s.ny[j] * (s.py[j] - oy) + s.nz[j] * (s.pz[j] - oz);
+                    blocked |= int(plane_t_exact(num, s.nx[j], s.ny[j], s.nz[j], dx, dy, dz, tmin) < tmax);
+                }
             if (blocked) return true;
         }
     }
@@ -533,8 +540,8 @@ bool any_hit(const soa_scene<T>& s, const ray<T>& r, T tmin, T tmax) {
                         const T sx = ox - s.ax[j], sy = oy - s.ay[j], sz = oz - s.az[j];
                         const T qx = sy * s.e1z[j] - sz * s.e1y[j], qy = sz * s.e1x[j] - sx * s.e1z[j],
                                 qz = sx * s.e1y[j] - sy * s.e1x[j];
-                        if (triangle_t(sx, sy, sz, qx, qy, qz, s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j],
-                                       s.e2z[j], dx, dy, dz, tmin) < tmax)
+                        if (triangle_t_exact(sx, sy, sz, qx, qy, qz, s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j],
+                                             s.e2z[j], dx, dy, dz, tmin) < tmax)
                             return true;
                     }
                     return false;
@@ -542,15 +549,25 @@ bool any_hit(const soa_scene<T>& s, const ray<T>& r, T tmin, T tmax) {
                 return true;
         } else
         for (size_t i = 0; i < round_up(s.triangle_count); i += G) {
-            int blocked = 0;
+            int blocked = 0, unsure = 0;
             for (int k = 0; k < G; ++k) {
                 const size_t j = i + size_t(k);
                 const T sx = ox - s.ax[j], sy = oy - s.ay[j], sz = oz - s.az[j];
                 const T qx = sy * s.e1z[j] - sz * s.e1y[j], qy = sz * s.e1x[j] - sx * s.e1z[j],
                         qz = sx * s.e1y[j] - sy * s.e1x[j];
+                const T flat_bound =
+                    flat_scale(s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j], s.e2z[j]) * d_max + flat_tiny<T>();
                 blocked |= int(triangle_t(sx, sy, sz, qx, qy, qz, s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j],
-                                          s.e2z[j], dx, dy, dz, tmin) < tmax);
+                                          s.e2z[j], dx, dy, dz, tmin, flat_bound, unsure) < tmax);
             }
+            if (unsure && !blocked)  // nearly parallel or degenerate: decide exactly
+                for (size_t j = i; j < i + G; ++j) {
+                    const T sx = ox - s.ax[j], sy = oy - s.ay[j], sz = oz - s.az[j];
+                    const T qx = sy * s.e1z[j] - sz * s.e1y[j], qy = sz * s.e1x[j] - sx * s.e1z[j],
+                            qz = sx * s.e1y[j] - sy * s.e1x[j];
+                    blocked |= int(triangle_t_exact(sx, sy, sz, qx, qy, qz, s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j],
+                                                    s.e2y[j], s.e2z[j], dx, dy, dz, tmin) < tmax);
+                }
             if (blocked) return true;
         }
     }

@@ -1,0 +1,109 @@
+// fast_path_kernels.hpp — the specialised path's plane and triangle tests.
+//
+// One ray against one plane or triangle, written for the lane loops of
+// fast_path.cpp (no branch in the common case, so a loop over 8 or 32 rays
+// is vectorised; the functions are small and inlined into those loops, so
+// each instruction-set copy of fast_path.cpp compiles them for its own
+// vector units; always_inline makes sure of it). In a header of their own so that tests/numerics can check
+// them on inputs built to be hard (render_kernel_test.cpp).
+#pragma once
+
+// Exact "is d.n (or e1.(d x e2)) zero?": the course's formulations and this
+// path decide parallel rays and degenerate triangles the same way.
+#include "solutions/07-precision/formulations/exact_sign.hpp"
+
+#include "common/math.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rt::render_tool {
+
+// Parallel rays, rays in a plane and degenerate triangles are misses. The
+// denominator d.n (a plane) or determinant e1.(d x e2) (a triangle) can come
+// out as a tiny non-zero number although the exact one is 0, and the ray
+// would then hit at a huge or arbitrary t. So each lane also compares the
+// rounded value with a bound on its rounding error: beyond it, the exact
+// value is certainly not 0 (the common case, a few operations per lane);
+// within it (rare), the lane is left out here and `unsure` is set, and the
+// caller runs the scalar *_exact version below on the packet, which decides
+// exactly (exact_sign.hpp) and otherwise computes the very same t.
+template <class T>
+inline constexpr T half_ulp = std::numeric_limits<T>::epsilon() / 2;
+
+// One plane against one ray; num = n . (point - origin). The bound is
+// parallel_exactly's filter: each product and sum rounds relative to itself.
+template <class T>
+[[gnu::always_inline]] inline T plane_t(T num, T nx, T ny, T nz, T dx, T dy, T dz, T tmin, int& unsure) {
+    const T den = nx * dx + ny * dy + nz * dz;
+    const T bound = T(8) * half_ulp<T> * (std::fabs(nx * dx) + std::fabs(ny * dy) + std::fabs(nz * dz)) +
+                    T(8) * std::numeric_limits<T>::denorm_min();
+    const bool small = std::fabs(den) <= bound;  // false for NaN (padding): rejected below anyway
+    unsure |= int(small);
+    const T t = num / den;  // exactly 0: +-inf or NaN, both rejected
+    return ((t > tmin) & !small) ? t : infinity<T>;
+}
+
+// The same, deciding d.n = 0 exactly: for the lanes plane_t was unsure of.
+template <class T>
+T plane_t_exact(T num, T nx, T ny, T nz, T dx, T dy, T dz, T tmin) {
+    if (formulations::parallel_exactly(vec3<T>(dx, dy, dz), vec3<T>(nx, ny, nz))) return infinity<T>;
+    const T t = num / (nx * dx + ny * dy + nz * dz);
+    return t > tmin ? t : infinity<T>;
+}
+
+// A bound on the rounding error of Moeller-Trumbore's determinant, over
+// d_max = max |d_i| (the lane's part): the error is at most 8 u times
+// sum |e1_i| (|d_j e2_k| + |d_k e2_j|) (flat_exactly's filter), and that sum
+// is at most 2 d_max ||e1||_1 max |e2_i|. Per triangle, outside the lanes.
+template <class T>
+inline T flat_scale(T e1x, T e1y, T e1z, T e2x, T e2y, T e2z) {
+    return T(16) * half_ulp<T> * (std::fabs(e1x) + std::fabs(e1y) + std::fabs(e1z)) *
+           std::max(std::max(std::fabs(e2x), std::fabs(e2y)), std::fabs(e2z));
+}
+
+// One triangle against one ray (Moeller-Trumbore). s = origin - a and
+// q = s x e1 depend only on the origin and the triangle. flat_bound =
+// flat_scale * d_max + a few subnormals (products of three that underflow).
+template <class T>
+[[gnu::always_inline]] inline T triangle_t(T sx, T sy, T sz, T qx, T qy, T qz, T e1x, T e1y, T e1z, T e2x, T e2y, T e2z, T dx, T dy, T dz,
+                    T tmin, T flat_bound, int& unsure) {
+    const T px = dy * e2z - dz * e2y, py = dz * e2x - dx * e2z, pz = dx * e2y - dy * e2x;
+    const T det = e1x * px + e1y * py + e1z * pz;
+    const bool small = std::fabs(det) <= flat_bound;  // false for NaN (padding): rejected below anyway
+    unsure |= int(small);
+    const T inv_det = T(1) / det;
+    const T u = (sx * px + sy * py + sz * pz) * inv_det;
+    const T v = (dx * qx + dy * qy + dz * qz) * inv_det;
+    const T t = (e2x * qx + e2y * qy + e2z * qz) * inv_det;
+    // Edges count as inside; NaN fails every test.
+    return ((u >= T(0)) & (v >= T(0)) & (u + v <= T(1)) & (t > tmin) & !small) ? t : infinity<T>;
+}
+
+// The same, deciding e1.(d x e2) = 0 (a ray parallel to the triangle's
+// plane or in it, or a degenerate triangle) exactly: for the lanes
+// triangle_t was unsure of, and for the scalar loops of the tree's leaves.
+template <class T>
+T triangle_t_exact(T sx, T sy, T sz, T qx, T qy, T qz, T e1x, T e1y, T e1z, T e2x, T e2y, T e2z, T dx, T dy, T dz,
+                   T tmin) {
+    if (formulations::flat_exactly(vec3<T>(dx, dy, dz), vec3<T>(0), vec3<T>(e1x, e1y, e1z), vec3<T>(e2x, e2y, e2z)))
+        return infinity<T>;
+    int ignored = 0;
+    return triangle_t(sx, sy, sz, qx, qy, qz, e1x, e1y, e1z, e2x, e2y, e2z, dx, dy, dz, tmin, T(-1), ignored);
+}
+
+// The absolute part of the determinant's bound: a product of three numbers
+// that underflows is off by up to half a subnormal, more than any relative bound.
+template <class T>
+inline T flat_tiny() {
+    return T(16) * std::numeric_limits<T>::denorm_min();
+}
+
+// max |d_i|, the ray's part of the determinant's bound.
+template <class T>
+inline T direction_max(T dx, T dy, T dz) {
+    return std::max(std::max(std::fabs(dx), std::fabs(dy)), std::fabs(dz));
+}
+
+}  // namespace rt::render_tool
