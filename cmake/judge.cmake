@@ -25,6 +25,16 @@ if(RT_JUDGE)
   target_link_libraries(rt_rpc PUBLIC rt_common)
   add_library(rt_rpc_judge STATIC "${RT_RPC_DIR}/judge.cpp")
   target_link_libraries(rt_rpc_judge PUBLIC rt_rpc)
+  # The mains, compiled once for every chapter: the judges' (doctest's implementation, the slowest file
+  # of a judge), one for the public judges and one for the hidden ones, and the runners'.
+  # EXCLUDE_FROM_ALL: built only for a judge that links them (a kit has no hidden judge).
+  foreach(kind public hidden)
+    add_library(rt_judge_main_${kind} OBJECT EXCLUDE_FROM_ALL "${RT_RPC_DIR}/judge_main.cpp")
+    target_link_libraries(rt_judge_main_${kind} PRIVATE rt_rpc_judge doctest::doctest)
+  endforeach()
+  target_compile_definitions(rt_judge_main_public PRIVATE RT_JUDGE_PUBLIC)
+  add_library(rt_rpc_runner_main OBJECT EXCLUDE_FROM_ALL "${RT_RPC_DIR}/runner.cpp")
+  target_link_libraries(rt_rpc_runner_main PRIVATE rt_rpc)
 endif()
 
 function(rt_chapter_judge id chapter_dir depends dependency_libs)
@@ -59,8 +69,8 @@ function(rt_chapter_judge id chapter_dir depends dependency_libs)
     endif()
   endforeach()
 
-  add_executable(${id}_runner "${RT_RPC_DIR}/runner.cpp")
-  target_link_libraries(${id}_runner PRIVATE ${runner_tables} ${id}_exercises rt_rpc)
+  add_executable(${id}_runner)
+  target_link_libraries(${id}_runner PRIVATE rt_rpc_runner_main ${runner_tables} ${id}_exercises rt_rpc)
   set_target_properties(${id}_runner PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/judge")
 
   set(json "  \"runner\": \"$<TARGET_FILE:${id}_runner>\"")
@@ -70,13 +80,10 @@ function(rt_chapter_judge id chapter_dir depends dependency_libs)
       continue()
     endif()
     set(target ${id}_${kind}_judge)
-    add_executable(${target} ${test_sources} "${RT_RPC_DIR}/judge_main.cpp")
-    if(kind STREQUAL "public")
-      target_compile_definitions(${target} PRIVATE RT_JUDGE_PUBLIC)
-    endif()
+    add_executable(${target} ${test_sources})
     target_include_directories(${target} PRIVATE "$<TARGET_PROPERTY:${id}_student,INTERFACE_INCLUDE_DIRECTORIES>")
-    target_link_libraries(${target} PRIVATE ${id}_judge_table ${judge_dependencies} rt_rpc_judge doctest::doctest
-                                            rt_common)
+    target_link_libraries(${target} PRIVATE rt_judge_main_${kind} ${id}_judge_table ${judge_dependencies} rt_rpc_judge
+                                            doctest::doctest rt_common)
     set_target_properties(${target} PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/judge")
     string(APPEND json ",\n  \"${kind}_judge\": \"$<TARGET_FILE:${target}>\"")
     # With the solutions on the runner's side, every test passes through the judge as it does directly:
