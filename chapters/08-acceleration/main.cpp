@@ -6,7 +6,8 @@
 // by YOUR build_sah over the boxes of aabb.hpp; each pixel's ray asks YOUR
 // closest_hit, each shadow ray YOUR any_hit, and the leaves call the scene's
 // one dispatch (common/object_dispatch.hpp). Planes have no finite box, so
-// they stay outside the tree and are asked one by one, as in chapter 03.
+// they stay outside the tree and are asked one by one, as in chapter 03
+// (scene_tree.hpp does this split; rt-render's --general uses it too).
 //
 //   ch08-acceleration [--level N] [--scene FILE] [the usual options]
 //
@@ -17,8 +18,7 @@
 // paths at 96x64 pixels, where smaller spheres are sub-pixel). With --scene
 // FILE, the file is drawn as written. The program prints the size of the
 // scene and the tree and how long the build took, then the usual report line.
-#include "aabb.hpp"
-#include "bvh.hpp"
+#include "scene_tree.hpp"
 #include "04-plane/plane.hpp"
 #include "06-shading/shading.hpp"
 #include "02-sphere/sphere.hpp"
@@ -46,35 +46,6 @@ constexpr int default_level = 4;  // the chapter's own picture
 int level_option = -1;            // --level N; -1: default_level, or the --scene file as written
 bool scene_option = false;        // --scene FILE given
 
-// The scene split in two: what has a finite box goes into the tree; planes
-// are tested one by one. `bounded[k]` is the scene's number of the tree's
-// object k, in increasing order, so the tree's "lowest index wins" is the
-// scene's too.
-template <class T>
-struct accelerated_scene {
-    std::vector<int> bounded;
-    std::vector<int> planes;
-    ch08::bvh<T> tree;
-};
-
-template <class T>
-accelerated_scene<T> build(const scene<T>& world) {
-    accelerated_scene<T> a;
-    std::vector<ch08::aabb<T>> boxes;
-    for (int i = 0; i < world.object_count(); ++i) {
-        const object_ref o = locate(world, i);
-        if (o.kind == shape_kind::plane) {
-            a.planes.push_back(i);
-            continue;
-        }
-        a.bounded.push_back(i);
-        boxes.push_back(o.kind == shape_kind::sphere ? ch08::bounds(world.spheres[o.index])
-                                                     : ch08::bounds(world.triangles[o.index]));
-    }
-    a.tree = ch08::build_sah(boxes);
-    return a;
-}
-
 // The sphereflake at --level N in place of the scene's shapes (its first two
 // materials are the ground and the flake, as in scenes/ch08-sphereflake.json).
 scene<double> with_level(scene<double> world, int level) {
@@ -94,33 +65,18 @@ image render_scene(const program_options& opt, long& rays) {
         object_dispatch(world, ch02::intersect_sphere<T>, ch04::intersect_plane<T>, ch05::intersect_triangle<T>);
 
     stopwatch build_time;
-    const accelerated_scene<T> a = build(world);
+    const ch08::scene_tree<T> a = ch08::build_scene_tree(world);
     std::printf("ch08: %zu objects in the tree (%zu nodes, %.1f ms to build), %zu planes outside it\n",
                 a.bounded.size(), a.tree.nodes.size(), build_time.seconds() * 1e3, a.planes.size());
 
-    const ch08::leaf_intersector<T> leaf = [&](int k, const ray<T>& r, const interval<T>& range, hit_record<T>& hit) {
-        return dispatch(a.bounded[size_t(k)], r, range, hit);
-    };
-    // The closest hit: the tree's, then the planes', lowest scene number on equal t.
+    const ch08::leaf_intersector<T> leaf = ch08::leaf_test(a, dispatch);
     auto closest = [&](const ray<T>& r, const interval<T>& range) {
-        std::optional<hit_record<T>> best = ch08::closest_hit(a.tree, leaf, r, range);
-        if (best) best->object = a.bounded[size_t(best->object)];
-        for (int p : a.planes) {
-            const T upper = best ? std::nextafter(best->t, infinity<T>) : range.max;
-            hit_record<T> hit;
-            if (dispatch(p, r, interval<T>{range.min, upper}, hit) && (!best || hit.t < best->t || p < best->object))
-                best = hit;
-        }
-        return best;
+        return ch08::scene_closest_hit(a, leaf, dispatch, r, range);
     };
-
     std::atomic<long> shadow_rays{0};
     const ch06::occlusion_test<T> occluded = [&](const ray<T>& r, const interval<T>& range) {
         shadow_rays.fetch_add(1, std::memory_order_relaxed);
-        hit_record<T> hit;
-        for (int p : a.planes)
-            if (dispatch(p, r, range, hit)) return true;
-        return ch08::any_hit(a.tree, leaf, r, range);
+        return ch08::scene_any_hit(a, leaf, dispatch, r, range);
     };
 
     image img = render(opt.width, opt.height, [&](int col, int row) {

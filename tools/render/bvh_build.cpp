@@ -100,6 +100,39 @@ bin_stats bin_all(const record* r, size_t n, const binner& which) {
     return total;
 }
 
+// std::partition on every core, for the big nodes at the top of the tree
+// (below parallel_bin_threshold, one core partitions). Each thread
+// partitions its own chunk; then the chunks are joined left to right: with
+// the objects that go left so far in [begin, left_end), the chunk's own
+// left part L2 in [start, mid) and the right part R1 of what came before
+// in [left_end, start), swapping the shorter of R1 and L2 with the far end
+// of the other puts every left object before every right one (neither
+// side keeps its order, which a partition never promises). The swaps too
+// are split over the threads.
+template <class Pred>
+record* parallel_partition(record* r, size_t n, Pred goes_left) {
+    if (n < parallel_bin_threshold) return std::partition(r, r + n, goes_left);
+    const int chunks = render_threads();
+    std::vector<size_t> mid(static_cast<size_t>(chunks));
+    auto chunk_start = [&](int c) { return n * size_t(c) / size_t(chunks); };
+    for_each_row(chunks, [&](int c) {
+        mid[size_t(c)] = size_t(std::partition(r + chunk_start(c), r + chunk_start(c + 1), goes_left) - r);
+    });
+    size_t left_end = mid[0];
+    for (int c = 1; c < chunks; ++c) {
+        const size_t start = chunk_start(c), k = std::min(start - left_end, mid[size_t(c)] - start);
+        record* a = r + left_end;
+        record* b = r + mid[size_t(c)] - k;
+        const int parts = 4 * chunks;
+        for_each_row(parts, [&](int q) {
+            const size_t from = k * size_t(q) / size_t(parts), to = k * size_t(q + 1) / size_t(parts);
+            std::swap_ranges(a + from, a + to, b + from);
+        });
+        left_end += mid[size_t(c)] - start;
+    }
+    return r + left_end;
+}
+
 // The box and the centres' box of a range (used at the root, and after a
 // split that had to fall back to halving by count).
 void bounds_of(const record* r, size_t n, bvh_box& box, bvh_box& centres) {
@@ -206,7 +239,7 @@ private:
         const bool leaf_cheaper = !(parent > 0) || double(n) * parent <= parent + best;
         if (n <= max_leaf_ && (best_split < 0 || leaf_cheaper)) return false;
         if (best_split < 0) return halve(j, left, right);
-        record* mid = std::partition(r, r + n, [&](const record& x) { return which(x) < best_split; });
+        record* mid = parallel_partition(r, n, [&](const record& x) { return which(x) < best_split; });
         left = job{j.begin, j.begin + size_t(mid - r), empty_box(), empty_box(), 0, 0};
         right = job{left.end, j.end, empty_box(), empty_box(), 0, 0};
         for (int i = 0; i < bins; ++i) {
@@ -235,12 +268,21 @@ bvh_tree build_bvh(const std::vector<bvh_box>& boxes, int max_leaf) {
     stopwatch clock;
     bvh_tree tree;
     if (boxes.empty()) return tree;
+    // The records and the root's bounds, in chunks on every core.
     std::vector<record> rec(boxes.size());
-    for (size_t i = 0; i < boxes.size(); ++i) rec[i] = {boxes[i], std::uint32_t(i), 0};
-
-    job root{0, rec.size(), {}, {}, 0, 0};
-    bounds_of(rec.data(), rec.size(), root.box, root.centres);
-    tree.nodes.reserve(2 * boxes.size() / size_t(std::max(1, max_leaf / 2)) + 1);
+    job root{0, rec.size(), empty_box(), empty_box(), 0, 0};
+    {
+        const int chunks = 4 * render_threads();
+        std::mutex merge;
+        for_each_row(chunks, [&](int c) {
+            const size_t from = rec.size() * size_t(c) / size_t(chunks), to = rec.size() * size_t(c + 1) / size_t(chunks);
+            for (size_t i = from; i < to; ++i) rec[i] = {boxes[i], std::uint32_t(i), 0};
+            bvh_box b, k;
+            bounds_of(rec.data() + from, to - from, b, k);
+            const std::lock_guard<std::mutex> lock(merge);
+            grow(root.box, b), grow(root.centres, k);
+        });
+    }
     tree.nodes.emplace_back();
 
     // The top of the tree, one node at a time with parallel binning; every
@@ -263,23 +305,112 @@ bvh_tree build_bvh(const std::vector<bvh_box>& boxes, int max_leaf) {
         leaves[size_t(t)] = b.leaves_, depths[size_t(t)] = tasks[size_t(t)].depth + b.depth_;
     });
     tree.leaves = top.leaves_, tree.depth = top.depth_;
+    // Where each subtree's nodes go (its root replaces its slot, the rest
+    // are appended: local node i >= 1 goes to base + i), then the copies,
+    // one task each.
+    std::vector<size_t> base(tasks.size());
+    size_t total = tree.nodes.size();
     for (size_t t = 0; t < tasks.size(); ++t) {
-        const auto& part = parts[t];
-        const auto base = std::uint32_t(tree.nodes.size() - 1);  // local node i >= 1 goes to base + i
+        base[t] = total - 1;
+        total += parts[t].size() - 1;
+        tree.leaves += leaves[t], tree.depth = std::max(tree.depth, depths[t]);
+    }
+    tree.nodes.reserve(total);  // exactly: a tree of 48 million spheres has a gigabyte of nodes
+    tree.nodes.resize(total);
+    for_each_row(int(tasks.size()), [&](int ti) {
+        const auto t = size_t(ti);
+        std::vector<bvh_node>& part = parts[t];
         for (size_t i = 0; i < part.size(); ++i) {
             bvh_node n = part[i];
-            if (n.count == 0) n.first += base;
-            if (i == 0)
-                tree.nodes[tasks[t].slot] = n;
-            else
-                tree.nodes.push_back(n);
+            if (n.count == 0) n.first += std::uint32_t(base[t]);
+            tree.nodes[i == 0 ? tasks[t].slot : base[t] + i] = n;
         }
-        tree.leaves += leaves[t], tree.depth = std::max(tree.depth, depths[t]);
-        std::vector<bvh_node>().swap(parts[t]);
-    }
+        std::vector<bvh_node>().swap(part);
+    });
     tree.order.resize(rec.size());
-    for (size_t i = 0; i < rec.size(); ++i) tree.order[i] = rec[i].id;
+    const int chunks = 4 * render_threads();
+    for_each_row(chunks, [&](int c) {
+        const size_t from = rec.size() * size_t(c) / size_t(chunks), to = rec.size() * size_t(c + 1) / size_t(chunks);
+        for (size_t i = from; i < to; ++i) tree.order[i] = rec[i].id;
+    });
     tree.build_seconds = clock.seconds();
+    return tree;
+}
+
+namespace {
+
+// Writes the wide node for binary inner node `b` (and, depth first, the
+// wide nodes below it); returns its index. Children are numbered after
+// their parent, so a ray's walk reads the array mostly forwards.
+std::uint32_t collapse(const std::vector<bvh_node>& bin, std::uint32_t b, std::vector<bvh_wide_node>& out) {
+    // Open the largest inner child until there are `wide` of them: the
+    // largest box is the one most rays enter, so it is the one most worth
+    // replacing by its children's tighter boxes.
+    std::uint32_t slot[wide] = {bin[b].first, bin[b].first + 1};
+    int n = 2;
+    while (n < wide) {
+        int best = -1;
+        double best_area = -1;
+        for (int i = 0; i < n; ++i) {
+            const bvh_node& c = bin[slot[i]];
+            if (c.count > 0) continue;
+            const double a = area(c.box);
+            if (a > best_area) best_area = a, best = i;
+        }
+        if (best < 0) break;
+        const std::uint32_t opened = slot[best];
+        slot[best] = bin[opened].first;
+        slot[n++] = bin[opened].first + 1;
+    }
+    const auto index = std::uint32_t(out.size());
+    out.emplace_back();
+    std::uint32_t child[wide], count[wide];
+    for (int i = 0; i < wide; ++i) {
+        if (i >= n) {
+            child[i] = 0, count[i] = bvh_wide_node::empty_slot;
+            continue;
+        }
+        const bvh_node& c = bin[slot[i]];
+        child[i] = c.count > 0 ? c.first : collapse(bin, slot[i], out);
+        count[i] = c.count;
+    }
+    bvh_wide_node& w = out[index];  // after the recursion: `out` may have moved
+    for (int i = 0; i < wide; ++i) {
+        // An empty slot gets the inverted box (low +inf, high -inf), which no ray enters (fast_path.cpp).
+        const bvh_box box = i < n ? bin[slot[i]].box : empty_box();
+        for (int a = 0; a < 3; ++a) w.lo[a][i] = box.lo[a], w.hi[a][i] = box.hi[a];
+        w.child[i] = child[i], w.count[i] = count[i];
+    }
+    return index;
+}
+
+}  // namespace
+
+bvh_wide_tree collapse_to_wide(bvh_tree&& binary) {
+    stopwatch clock;
+    bvh_wide_tree tree;
+    tree.order = std::move(binary.order);
+    tree.leaves = binary.leaves, tree.depth = binary.depth;
+    if (!binary.nodes.empty()) {
+        const bvh_node& root = binary.nodes[0];
+        if (root.count > 0) {  // a single leaf: a wide root with one child
+            bvh_wide_node w{};
+            for (int i = 0; i < wide; ++i) {
+                const bvh_box box = i == 0 ? root.box : empty_box();
+                for (int a = 0; a < 3; ++a) w.lo[a][i] = box.lo[a], w.hi[a][i] = box.hi[a];
+                w.child[i] = 0, w.count[i] = bvh_wide_node::empty_slot;
+            }
+            w.child[0] = root.first, w.count[0] = root.count;
+            tree.nodes.push_back(w);
+        } else {
+            // A wide node replaces at least two binary inner nodes (the
+            // tree has leaves - 1 of them) unless its children are leaves.
+            tree.nodes.reserve(binary.leaves / 2 + 1);
+            collapse(binary.nodes, 0, tree.nodes);
+        }
+    }
+    std::vector<bvh_node>().swap(binary.nodes);
+    tree.build_seconds = binary.build_seconds + clock.seconds();
     return tree;
 }
 

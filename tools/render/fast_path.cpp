@@ -41,6 +41,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <string>
@@ -77,6 +78,11 @@ static_assert(tile_w * tile_h == W, "a packet is a whole tile");
 
 enum class sphere_mode { none, plain, robust };
 
+// A tree's leaf holds at most 8 objects (build_bvh's max_leaf); one ray
+// tests them as one group of 8 lanes (a vector of 8 floats), like a shadow
+// ray tests brute force's groups.
+constexpr int leaf_lanes = 8;
+
 // Object numbers in the same width as T, so a select on (t, object) pairs
 // stays within one kind of vector lane.
 template <class T>
@@ -101,7 +107,16 @@ struct soa_scene {
     // order, so a leaf is a contiguous range of the arrays; original[i] is
     // then the scene's own number of object i.
     bool tree = false;
-    bvh_tree sphere_tree, triangle_tree;
+    //
+    // Spheres and triangles get different trees, each the faster of the two
+    // on rt-bench's scenes (tools/bench/README.md): spheres a binary tree
+    // walked by a whole packet (traverse_packet: at a million random spheres
+    // it is still faster than one ray at a time through the wide tree),
+    // triangles the 4-wide tree walked one ray at a time (traverse_wide: on
+    // the million-triangle tetrahedron most packets straddle a silhouette,
+    // and single rays are three times faster there).
+    bvh_tree sphere_tree;
+    bvh_wide_tree triangle_tree;
     std::vector<std::int64_t> original;
 
     // magnitude: the largest coordinate of the scene, eye and lights, which
@@ -143,7 +158,10 @@ struct soa_scene {
         }
         for (auto* v : {&cx, &cy, &cz, &radius, &radius2, &px, &py, &pz, &nx, &ny, &nz, &ax, &ay, &az, &e1x, &e1y,
                         &e1z, &e2x, &e2y, &e2z, &bx, &by, &bz, &br2})
-            while (v->size() % W) v->push_back(std::numeric_limits<T>::quiet_NaN());
+            // At least leaf_lanes of padding: a tree's leaf is tested leaf_lanes
+            // objects at a time, past its end (those lanes are dropped).
+            for (size_t k = 0; k < size_t(leaf_lanes) || v->size() % W; ++k)
+                v->push_back(std::numeric_limits<T>::quiet_NaN());
         if (tree) {
             for (size_t j = 0; j < sphere_count; ++j) original.push_back(std::int64_t(sphere_tree.order[j]));
             for (size_t j = 0; j < plane_count; ++j) original.push_back(std::int64_t(sphere_count + j));
@@ -179,7 +197,7 @@ struct soa_scene {
             const auto& x = s.triangles[i];
             boxes[i] = box_of(glm::min(x.a, glm::min(x.b, x.c)), glm::max(x.a, glm::max(x.b, x.c)));
         }
-        triangle_tree = build_bvh(boxes);
+        triangle_tree = collapse_to_wide(build_bvh(boxes));
     }
 };
 
@@ -279,6 +297,86 @@ bool traverse_any(const bvh_tree& tree, const ray<T>& r, T tmax, Blocked&& block
     return false;
 }
 
+// Four floats, one per child of a wide node: gcc's vector extension, which
+// each copy of this file compiles for its own instruction set (SSE, part
+// of every x86-64, holds four).
+typedef float f4 __attribute__((vector_size(16)));
+
+inline f4 row(const float (&r)[wide]) {
+    f4 v;
+    std::memcpy(&v, r, sizeof v);
+    return v;
+}
+
+// Depth-first walk of a wide tree for one ray, nearest child first.
+// At each node the ray's slab intervals with the four child boxes are
+// computed together. The near side of a slab is the box's low side when
+// the direction component is positive (reciprocal >= 0) and its high side
+// otherwise, so no min/max is needed; an empty slot's box (low +inf, high
+// -inf) then gives entry +inf and exit -inf and is never entered. The
+// children entered before the ray's current limit are pushed farthest first,
+// each with its entry distance: when it is popped later and the ray has
+// meanwhile found a hit nearer than that entry, it is skipped unopened.
+// leaf(first, count) tests a leaf's objects; for closest hit (AnyHit false)
+// it updates `best`, the limit; for any hit it returns true at a blocker.
+template <bool AnyHit, class T, class Leaf>
+bool traverse_wide(const bvh_wide_tree& tree, const T (&origin)[3], const T (&direction)[3], const T& best,
+                   Leaf&& leaf) {
+    if (tree.nodes.empty()) return false;
+    float o[3], inv[3];
+    bool negative[3];
+    for (int a = 0; a < 3; ++a) {
+        o[a] = float(origin[a]);
+        inv[a] = slab_reciprocal(float(direction[a]));
+        negative[a] = inv[a] < 0;
+    }
+    // best in float, rounded up a little: never below the true value.
+    float limit = float(best) * slab_widen;
+    struct entry {
+        float enter;
+        std::uint32_t child, count;
+    };
+    entry stack[512];  // at most wide - 1 per level and the tree is at most ~130 levels deep
+    int top = 0;
+    stack[top++] = {0.0f, 0, 0};
+    while (top > 0) {
+        const entry e = stack[--top];
+        if (e.enter > limit) continue;
+        if (e.count > 0) {
+            if constexpr (AnyHit) {
+                if (leaf(e.child, e.count)) return true;
+            } else {
+                leaf(e.child, e.count);
+                limit = float(best) * slab_widen;
+            }
+            continue;
+        }
+        const bvh_wide_node& n = tree.nodes[e.child];
+        f4 enter = {0, 0, 0, 0}, leave = {limit, limit, limit, limit};
+        for (int a = 0; a < 3; ++a) {
+            const f4 lo = row(n.lo[a]), hi = row(n.hi[a]);
+            const f4 t0 = ((negative[a] ? hi : lo) - o[a]) * inv[a];
+            const f4 t1 = ((negative[a] ? lo : hi) - o[a]) * inv[a] * slab_widen;
+            enter = enter > t0 ? enter : t0;
+            leave = leave < t1 ? leave : t1;
+        }
+        const auto in = enter <= leave;
+        // Insertion by entry distance, farthest at the bottom of this group.
+        const int base = top;
+        for (int i = 0; i < wide; ++i) {
+            if (!in[i]) continue;
+            const entry c{enter[i], n.child[i], n.count[i]};
+            int j = top++;
+            while (j > base && stack[j - 1].enter < c.enter) {
+                stack[j] = stack[j - 1];
+                --j;
+            }
+            stack[j] = c;
+        }
+    }
+    return false;
+}
+
 // c = |f|^2 - r^2 with the rounding error of each square added back (fma
 // gives a product's exact low half), so a large sphere seen from near its
 // surface, where |f|^2 and r^2 agree in most digits, keeps an accurate c.
@@ -332,6 +430,47 @@ inline T sphere_t(T fx, T fy, T fz, T c, T rr, T dx, T dy, T dz, T a, T inv_a, T
     return ((disc >= T(0)) & (t > tmin)) ? t : infinity<T>;
 }
 
+
+// One ray against the triangles [g, g + leaf_lanes) of a tree's leaf that
+// ends at e (lanes from e on, other leaves' triangles or padding, give
+// infinity): t[i] for triangle g + i, by the brute-force kernel in
+// leaf_lanes lanes, then triangle_t_exact for the whole group when a lane
+// was unsure (as the brute-force loops do), so t is the same to the bit.
+template <class T>
+struct triangle_group {
+    alignas(64) T t[leaf_lanes];
+
+    triangle_group(const soa_scene<T>& s, size_t g, size_t e, T ox, T oy, T oz, T dx, T dy, T dz, T d_max, T tmin) {
+        int unsure = 0;
+        for (int i = 0; i < leaf_lanes; ++i) {
+            const size_t j = g + size_t(i);
+            const T sx = ox - s.ax[j], sy = oy - s.ay[j], sz = oz - s.az[j];
+            const T qx = sy * s.e1z[j] - sz * s.e1y[j], qy = sz * s.e1x[j] - sx * s.e1z[j],
+                    qz = sx * s.e1y[j] - sy * s.e1x[j];
+            const T flat_bound =
+                flat_scale(s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j], s.e2z[j]) * d_max + flat_tiny<T>();
+            const T x = triangle_t(sx, sy, sz, qx, qy, qz, s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j], s.e2z[j],
+                                   dx, dy, dz, tmin, flat_bound, unsure);
+            t[i] = j < e ? x : infinity<T>;
+        }
+        if (!unsure) return;
+        for (int i = 0; i < leaf_lanes; ++i) {  // nearly parallel or degenerate: decide exactly
+            const size_t j = g + size_t(i);
+            if (j >= e) break;
+            const T sx = ox - s.ax[j], sy = oy - s.ay[j], sz = oz - s.az[j];
+            const T qx = sy * s.e1z[j] - sz * s.e1y[j], qy = sz * s.e1x[j] - sx * s.e1z[j],
+                    qz = sx * s.e1y[j] - sy * s.e1x[j];
+            t[i] = triangle_t_exact(sx, sy, sz, qx, qy, qz, s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j], s.e2z[j],
+                                    dx, dy, dz, tmin);
+        }
+    }
+
+    bool blocked_before(T tmax) const {
+        int blocked = 0;
+        for (int i = 0; i < leaf_lanes; ++i) blocked |= int(t[i] < tmax);
+        return blocked != 0;
+    }
+};
 
 // The closest hit of each ray of a packet: tbest[k] and object[k] (-1 for
 // a miss). Objects are numbered spheres, then planes, then triangles.
@@ -466,9 +605,27 @@ void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, i
                 }
         }
       };
-      if (s.tree)
-          traverse_packet(s.triangle_tree, p, best_t, triangles);
-      else
+      if (s.tree) {
+          // One ray at a time through the wide tree (see soa_scene). A
+          // leaf's triangles are tested as one group of leaf_lanes lanes
+          // with the brute-force arithmetic, so t is the same to the bit.
+          for (int k = 0; k < W; ++k) {
+              const int o = CommonOrigin ? 0 : k;
+              const T ox = p.ox[o], oy = p.oy[o], oz = p.oz[o], dx = p.dx[k], dy = p.dy[k], dz = p.dz[k];
+              const T origin[3] = {ox, oy, oz}, direction[3] = {dx, dy, dz};
+              T bt = best_t[k];
+              I bo = best[k];
+              traverse_wide<false>(s.triangle_tree, origin, direction, bt, [&](std::uint32_t b, std::uint32_t n) {
+                  for (size_t g = b; g < size_t(b) + n; g += leaf_lanes) {
+                      const triangle_group<T> group(s, g, size_t(b) + n, ox, oy, oz, dx, dy, dz, d_max[k], tmin);
+                      for (int i = 0; i < leaf_lanes; ++i)
+                          if (group.t[i] < bt) bt = group.t[i], bo = base + I(g) + I(i);
+                  }
+                  return false;
+              });
+              best_t[k] = bt, best[k] = bo;
+          }
+      } else
           triangles(0, s.triangle_count);
     }
     for (int k = 0; k < W; ++k) {
@@ -491,6 +648,7 @@ bool any_hit(const soa_scene<T>& s, const ray<T>& r, T tmin, T tmax) {
     const T dx = r.direction.x, dy = r.direction.y, dz = r.direction.z;
     const T a = dx * dx + dy * dy + dz * dz, inv_a = T(1) / a;
     const T d_max = direction_max(dx, dy, dz);
+    [[maybe_unused]] const T origin[3] = {ox, oy, oz}, direction[3] = {dx, dy, dz};
     if constexpr (SM != sphere_mode::none) {
         // With a tree: only the leaves whose boxes the ray crosses, one object at a time.
         if (s.tree) {
@@ -535,15 +693,11 @@ bool any_hit(const soa_scene<T>& s, const ray<T>& r, T tmin, T tmax) {
     }
     if constexpr (Tris) {
         if (s.tree) {
-            if (traverse_any(s.triangle_tree, r, tmax, [&](size_t b, size_t e) {
-                    for (size_t j = b; j < e; ++j) {
-                        const T sx = ox - s.ax[j], sy = oy - s.ay[j], sz = oz - s.az[j];
-                        const T qx = sy * s.e1z[j] - sz * s.e1y[j], qy = sz * s.e1x[j] - sx * s.e1z[j],
-                                qz = sx * s.e1y[j] - sy * s.e1x[j];
-                        if (triangle_t_exact(sx, sy, sz, qx, qy, qz, s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j],
-                                             s.e2z[j], dx, dy, dz, tmin) < tmax)
+            if (traverse_wide<true>(s.triangle_tree, origin, direction, tmax, [&](std::uint32_t b, std::uint32_t n) {
+                    const size_t e = size_t(b) + n;
+                    for (size_t g = b; g < e; g += leaf_lanes)
+                        if (triangle_group<T>(s, g, e, ox, oy, oz, dx, dy, dz, d_max, tmin).blocked_before(tmax))
                             return true;
-                    }
                     return false;
                 }))
                 return true;
@@ -613,7 +767,7 @@ struct context {
     std::string describe_trees() const {
         char line[200];
         const bvh_tree& a = soa.sphere_tree;
-        const bvh_tree& b = soa.triangle_tree;
+        const bvh_wide_tree& b = soa.triangle_tree;
         std::snprintf(line, sizeof line, "tree: built in %.0f ms on %d threads, %.1f MB, %zu leaves, depth %zu",
                       1e3 * (a.build_seconds + b.build_seconds), render_threads(), double(a.bytes() + b.bytes()) / 1e6,
                       a.leaves + b.leaves, std::max(a.depth, b.depth));
@@ -661,7 +815,7 @@ struct context {
 template <class T, sphere_mode SM, bool Planes, bool Tris, bool Lights>
 image render_with(const scene_description& d, int width, int height, bool tree, long& rays) {
     const context<T> ctx(d, width, height, tree);
-    if (tree) std::printf("%s\n", ctx.describe_trees().c_str());
+    if (tree) std::fprintf(stderr, "%s\n", ctx.describe_trees().c_str());  // stderr: outside rt-bench's tables
     image img(width, height);
     std::atomic<long> shadow_rays{0};
     for_each_row((height + tile_h - 1) / tile_h, [&](int tile_row) {
@@ -730,9 +884,11 @@ primary_hits trace_with(const scene_description& d, int width, int height, bool 
 }
 
 template <class T, sphere_mode SM, bool Planes, bool Tris>
-long count_with(const scene_description& d, int width, int height, bool tree) {
+long count_with(const scene_description& d, int width, int height, bool tree, int repeat) {
     const context<T> ctx(d, width, height, tree);
     std::atomic<long> hits{0};
+    for (int r = 0; r < repeat; ++r) {
+    hits = 0;
     for_each_row((height + tile_h - 1) / tile_h, [&](int tile_row) {
         const int row0 = tile_row * tile_h;
         packet<T> p;
@@ -747,6 +903,7 @@ long count_with(const scene_description& d, int width, int height, bool tree) {
         }
         hits += row_hits;
     });
+    }
     return hits.load();
 }
 
@@ -796,11 +953,12 @@ primary_hits trace_primary(const scene_description& d, const scene_plan& plan, i
     return plan.prec == precision::single ? run(float{}) : run(double{});
 }
 
-long count_primary_hits(const scene_description& d, const scene_plan& plan, int width, int height) {
+long count_primary_hits(const scene_description& d, const scene_plan& plan, int width, int height, int repeat) {
     auto run = [&](auto type) {
         using T = decltype(type);
         return dispatch(mode_of(plan), plan.planes > 0, plan.triangles > 0, false, [&](auto SM, auto P, auto Tr, auto) {
-            return count_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value>(d, width, height, plan.tree);
+            return count_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value>(d, width, height, plan.tree,
+                                                                                                repeat);
         });
     };
     return plan.prec == precision::single ? run(float{}) : run(double{});

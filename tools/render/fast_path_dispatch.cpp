@@ -20,7 +20,7 @@ namespace rt::render_tool {
     image render_fast(const scene_description&, const scene_plan&, int, int, long&);                           \
     primary_hits trace_primary(const scene_description&, const scene_plan&, int, int);                        \
     primary_hits trace_primary_reference(const scene_description&, int, int);                                 \
-    long count_primary_hits(const scene_description&, const scene_plan&, int, int);                           \
+    long count_primary_hits(const scene_description&, const scene_plan&, int, int, int);                           \
     tree_figures build_trees_only(const scene_description&);                                                  \
     }
 RT_DECLARE_FAST_PATH(isa_baseline)
@@ -93,8 +93,8 @@ primary_hits trace_primary(const scene_description& d, const scene_plan& plan, i
 primary_hits trace_primary_reference(const scene_description& d, int width, int height) {
     RT_DISPATCH(trace_primary_reference(d, width, height))
 }
-long count_primary_hits(const scene_description& d, const scene_plan& plan, int width, int height) {
-    RT_DISPATCH(count_primary_hits(d, plan, width, height))
+long count_primary_hits(const scene_description& d, const scene_plan& plan, int width, int height, int repeat) {
+    RT_DISPATCH(count_primary_hits(d, plan, width, height, repeat))
 }
 
 tree_figures build_trees_only(const scene_description& d) { RT_DISPATCH(build_trees_only(d)) }

@@ -5,6 +5,7 @@
 #include "04-plane/plane.hpp"
 #include "03-scene-loop/scene_loop.hpp"
 #include "06-shading/shading.hpp"
+#include "08-acceleration/scene_tree.hpp"
 #include "02-sphere/sphere.hpp"
 #include "05-triangle/triangle.hpp"
 
@@ -18,21 +19,30 @@ namespace rt::render_tool {
 namespace {
 
 template <class T>
-image render_typed(const scene_description& d, int width, int height, long& rays) {
+image render_typed(const scene_description& d, bool use_tree, int width, int height, long& rays) {
     const scene<T> world = convert_scene<T>(d.world);
     const scene_camera<T> camera(d.camera, width, height);
 
-    const ch03::object_intersector<T> intersect =
+    const auto dispatch =
         object_dispatch(world, ch02::intersect_sphere<T>, ch04::intersect_plane<T>, ch05::intersect_triangle<T>);
+    const ch03::object_intersector<T> intersect = dispatch;
+    // Chapter 08's tree, when the plan says it pays (the same rule as the
+    // specialised path's); an empty tree otherwise, never asked.
+    const ch08::scene_tree<T> tree = use_tree ? ch08::build_scene_tree(world) : ch08::scene_tree<T>{};
+    const ch08::leaf_intersector<T> leaf = ch08::leaf_test(tree, dispatch);
+    auto closest = [&](const ray<T>& r, const interval<T>& range) {
+        return use_tree ? ch08::scene_closest_hit(tree, leaf, dispatch, r, range)
+                        : ch03::closest_hit(world.object_count(), intersect, r, range);
+    };
     std::atomic<long> shadow_rays{0};
     const ch06::occlusion_test<T> occluded = [&](const ray<T>& r, const interval<T>& range) {
         shadow_rays.fetch_add(1, std::memory_order_relaxed);
-        return ch03::closest_hit(world.object_count(), intersect, r, range).has_value();
+        return use_tree ? ch08::scene_any_hit(tree, leaf, dispatch, r, range) : closest(r, range).has_value();
     };
 
     image img = render(width, height, [&](int col, int row) {
         const ray<T> r = camera.primary_ray(col, row);
-        const auto hit = ch03::closest_hit(world.object_count(), intersect, r, camera.primary_range());
+        const auto hit = closest(r, camera.primary_range());
         if (!hit) return world.background;
         const material m = material_at(world, *hit);
         if (world.lights.empty()) return unlit_colour(m, hit->normal, r.direction);
@@ -44,9 +54,9 @@ image render_typed(const scene_description& d, int width, int height, long& rays
 
 }  // namespace
 
-image render_general(const scene_description& scene, precision prec, int width, int height, long& rays) {
-    return prec == precision::single ? render_typed<float>(scene, width, height, rays)
-                                     : render_typed<double>(scene, width, height, rays);
+image render_general(const scene_description& scene, const scene_plan& plan, int width, int height, long& rays) {
+    return plan.prec == precision::single ? render_typed<float>(scene, plan.tree, width, height, rays)
+                                          : render_typed<double>(scene, plan.tree, width, height, rays);
 }
 
 }  // namespace rt::render_tool

@@ -5,7 +5,8 @@
 // object through a std::function that picks chapter 02's sphere test,
 // chapter 04's plane test or chapter 05's triangle test; lit scenes are
 // shaded by chapter 06's shade() with its shadow rays through the same
-// loop. So this path renders with whichever side the build selects (your
+// loop. When the plan says a tree pays, chapter 08's tree (its build_sah,
+// closest_hit and any_hit) replaces the loop for spheres and triangles. So this path renders with whichever side the build selects (your
 // code or the reference solutions), and it is the baseline the specialised
 // path (fast_path.hpp) is measured against.
 #pragma once
@@ -14,9 +15,12 @@
 #include "common/program.hpp"
 #include "common/scene_file.hpp"
 
+#include "scene_plan.hpp"
+
 namespace rt::render_tool {
 
-// rays counts primary and shadow rays.
-image render_general(const scene_description& scene, precision prec, int width, int height, long& rays);
+// In plan.prec; through chapter 08's tree when plan.tree says a tree pays,
+// else through chapter 03's loop. rays counts primary and shadow rays.
+image render_general(const scene_description& scene, const scene_plan& plan, int width, int height, long& rays);
 
 }  // namespace rt::render_tool

@@ -116,7 +116,7 @@ int main(int argc, char** argv) {
 
         long rays = 0;
         stopwatch sw;
-        image img = general ? render_general(scene, plan.prec, w, h, rays) : render_fast(scene, plan, w, h, rays);
+        image img = general ? render_general(scene, plan, w, h, rays) : render_fast(scene, plan, w, h, rays);
         const double seconds = sw.seconds();
 
         std::filesystem::path path(out);

@@ -106,9 +106,12 @@ std::string scene_plan::describe() const {
     if (general) {
         std::snprintf(buffer, sizeof buffer,
                       "plan: GENERAL path (forced): %zu spheres, %zu planes, %zu triangles, %zu lights; "
-                      "every object type tested through chapter 03's loop, %s, chapter 02's sphere test, "
+                      "every object type tested through %s, %s, chapter 02's sphere test, "
                       "chapter 06 shading%s; nothing left out",
-                      spheres, planes, triangles, lights, name_of(prec), lights ? " with shadow rays" : "");
+                      spheres, planes, triangles, lights,
+                      tree ? "chapter 08's tree (build_sah, closest_hit, any_hit; planes one by one)"
+                           : "chapter 03's loop",
+                      name_of(prec), lights ? " with shadow rays" : "");
         return buffer;
     }
     const size_t bounded = spheres + triangles;
