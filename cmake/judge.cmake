@@ -31,6 +31,9 @@ if(RT_JUDGE)
   foreach(kind public hidden)
     add_library(rt_judge_main_${kind} OBJECT EXCLUDE_FROM_ALL "${RT_RPC_DIR}/judge_main.cpp")
     target_link_libraries(rt_judge_main_${kind} PRIVATE rt_rpc_judge doctest::doctest)
+    # doctest's own machinery (options, reporters) is not what a test run spends its time on; unoptimised it
+    # compiles in less than half the time (the tests themselves stay optimised).
+    target_compile_options(rt_judge_main_${kind} PRIVATE -O0)
   endforeach()
   target_compile_definitions(rt_judge_main_public PRIVATE RT_JUDGE_PUBLIC)
   add_library(rt_rpc_runner_main OBJECT EXCLUDE_FROM_ALL "${RT_RPC_DIR}/runner.cpp")
