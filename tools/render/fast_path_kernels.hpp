@@ -83,7 +83,7 @@ template <class T>
 
 // The same, deciding e1.(d x e2) = 0 (a ray parallel to the triangle's
 // plane or in it, or a degenerate triangle) exactly: for the lanes
-// triangle_t was unsure of, and for the scalar loops of the tree's leaves.
+// triangle_t was unsure of.
 template <class T>
 T triangle_t_exact(T sx, T sy, T sz, T qx, T qy, T qz, T e1x, T e1y, T e1z, T e2x, T e2y, T e2z, T dx, T dy, T dz,
                    T tmin) {

@@ -23,6 +23,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -120,6 +121,39 @@ void measure_precision(const settings& s, std::vector<outcome>& rows, group_name
     measure_families<T>(triangles, fm::triangle_formulations(), s, rows, groups);
 }
 
+// The cost of the robust float sphere against the plain float quadratic, in
+// two copies of each batch loop: the registry's (compiled in registry.cpp,
+// as in the tables) and a second one instantiated here. The same source runs
+// up to twice as fast or slow depending on where the linker puts a loop (the
+// plain quadratic's loop has been measured at 5.5 and at 11 ns per test in
+// two binaries), so one copy alone can flatter either side.
+void print_cost_table(std::ostream& os, const settings& s) {
+    using Q = sphere_query<float>;
+    const fm::batch_fn<Q> plain[2] = {fm::sphere_formulation_named("plain").batch32,
+                                      &fm::run_batch<Q, &fm::sphere_plain<float>>};
+    const fm::batch_fn<Q> mixed[2] = {fm::sphere_formulation_named("mixed").batch32,
+                                      &fm::run_batch<Q, &fm::sphere_mixed<float>>};
+    os << "\n## Cost of the robust float sphere (mixed / plain, float)\n\n"
+       << "ns per test (median of the runs) in the registry's copy of the loops and in a second copy compiled in "
+          "study.cpp, and mixed / plain in each; the larger ratio is the one to quote.\n\n"
+       << "| family | plain | mixed | ratio | plain (2nd copy) | mixed (2nd copy) | ratio (2nd copy) |\n"
+       << "|---|---|---|---|---|---|---|\n";
+    os << std::fixed << std::setprecision(1);
+    for (const family<Q>& fam : sphere_families<float>(s.cases)) {
+        double ns[2][2];
+        for (int copy = 0; copy < 2; ++copy) {
+            ns[copy][0] = time_batch(fam, plain[copy], s.timing).median;
+            ns[copy][1] = time_batch(fam, mixed[copy], s.timing).median;
+        }
+        os << "| " << fam.name;
+        for (int copy = 0; copy < 2; ++copy)
+            os << " | " << ns[copy][0] << " | " << ns[copy][1] << " | " << std::setprecision(2)
+               << ns[copy][1] / ns[copy][0] << std::setprecision(1);
+        os << " |\n";
+    }
+    os << std::defaultfloat;
+}
+
 // Rows of one family next to each other: formulation, then float before double.
 std::vector<outcome> ordered(const std::vector<outcome>& rows) {
     std::vector<outcome> out;
@@ -195,6 +229,7 @@ int main(int argc, char** argv) {
     print_summary_table(text, sphere_names, rows);
     text << "\nPlanes and triangles:\n";
     print_summary_table(text, other_names, rows);
+    print_cost_table(text, s);
     text << "\n## Tables by family\n";
     for (const auto& [name, description] : families) {
         print_family_table(text, name, description, rows);
