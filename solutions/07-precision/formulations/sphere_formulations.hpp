@@ -309,13 +309,14 @@ inline std::optional<float> near_root_first(double a, double h, double c, double
     return std::nullopt;
 }
 
-// A grazing ray: the discriminant cancelled more than 26 of double's 53
-// bits, too few left for float's 24. Kept out of line (and marked cold) so
-// that the common path stays small.
-[[gnu::noinline, gnu::cold]] inline std::optional<float> sphere_grazing_in_double_word(const ray<float>& ray_,
-                                                                                   const sphere<float>& s,
-                                                                                   const interval<float>& range) {
-    return sphere_float_in_double_word(ray_, s, range);
+// f x d for float data as double-words: with f = o - C, each component is
+// a sum of four products of two floats (g_x = o_y d_z - o_z d_y - C_y d_z +
+// C_z d_y), every product exact in double, added with two_sum.
+inline double_word<double> cross_component(float o1, float o2, float c1, float c2, float d1, float d2) {
+    const double_word<double> s1 = two_sum(double(o1) * d2, -(double(o2) * d1));
+    const double_word<double> s2 = two_sum(s1.hi, -(double(c1) * d2));
+    const double_word<double> s3 = two_sum(s2.hi, double(c2) * d1);
+    return fast_two_sum(s3.hi, (s1.lo + s2.lo) + s3.lo);
 }
 
 // c = f.f - r^2 for an origin near the surface, where the plain sum of
@@ -366,6 +367,43 @@ inline double c_near_surface(const vec3<float>& o, const sphere<float>& s, const
     return exact_c_cold(fw, r * r);
 }
 
+// A grazing ray: the discriminant cancelled more than 26 of double's 53
+// bits, too few left for float's 24. It is computed again in double-double
+// from exact pieces (a r^2 - |f x d|^2, every square error-free), which
+// decides hit or miss exactly enough for a tangent ray and leaves the
+// discriminant twice double's digits. Kept out of line (and marked cold) so
+// that the common path stays small.
+[[gnu::noinline, gnu::cold]] inline std::optional<float> sphere_grazing(const ray<float>& ray_, const sphere<float>& s,
+                                                                       const interval<float>& range,
+                                                                       const vec3<double>& f, double h) {
+    const vec3<float>& o = ray_.origin;
+    const vec3<float>& C = s.center;
+    const vec3<float>& d = ray_.direction;
+    const double_word<double> g[3] = {cross_component(o.y, o.z, C.y, C.z, d.y, d.z),
+                                      cross_component(o.z, o.x, C.z, C.x, d.z, d.x),
+                                      cross_component(o.x, o.y, C.x, C.y, d.x, d.y)};
+    auto square = [](double_word<double> x) {
+        double_word<double> p = two_prod(x.hi, x.hi);
+        return fast_two_sum(p.hi, p.lo + 2 * x.hi * x.lo);
+    };
+    const double_word<double> gg = add_same_sign(add_same_sign(square(g[0]), square(g[1])), square(g[2]));
+    // a = d.d: each square of a float is exact in double, the sum as a double-word.
+    const double_word<double> a = add_same_sign(add_same_sign(double_word<double>{double(d.x) * d.x, 0},
+                                                              double_word<double>{double(d.y) * d.y, 0}),
+                                                double_word<double>{double(d.z) * d.z, 0});
+    const double r2 = double(s.radius) * s.radius;  // exact
+    const double_word<double> disc_w = a * r2 - gg;
+    if (is_negative(disc_w)) return std::nullopt;
+    const double disc = disc_w.value(), av = a.value();
+    const double ff = dot(f, f);
+    double c = ff - r2;
+    if (!(std::fabs(c) >= 0x1p-27 * ff))
+        c = c_near_surface(o, s, f, range.min >= 0 ? (h >= 0 ? 1.0 : -1.0) : 0.0);
+    const double q = -(h + std::copysign(std::sqrt(disc), h));
+    if (q == 0) return nearest_in_range(0.0f, 0.0f, range);  // tangent at the origin: t = 0 twice
+    return nearest_in_range(to_float(c / q), to_float(q / av), range);
+}
+
 // Float inputs, double arithmetic: a product of two floats is exact in
 // double and a difference of two floats almost always is, so f, f x d and
 // c lose (almost) nothing; the roots are rounded to float once, at the end.
@@ -390,8 +428,10 @@ inline double c_near_surface(const vec3<float>& o, const sphere<float>& s, const
     const vec3<double> g = cross(f, d);
     const double ar2 = a * r2, disc = ar2 - dot(g, g);
     if (!(disc >= ar2 * 0x1p-26)) {  // one test on the common path
-        if (!(disc >= 0)) return std::nullopt;
-        return sphere_grazing_in_double_word(ray_, s, range);
+        // A miss by more than the discriminant's rounding error (a few
+        // 2^-53 of a r^2, far less than the margin used here), or NaN.
+        if (!(disc >= -ar2 * 0x1p-40)) return std::nullopt;
+        return sphere_grazing(ray_, s, range, f, h);
     }
     // c = f.f - r^2 plainly. f = o - C is off by at most 2^-53 of each
     // component and each square and sum by 2^-53 of its size, so c is off by
