@@ -338,43 +338,50 @@ bool traverse_wide(const bvh_wide_tree& tree, const T (&origin)[3], const T (&di
     };
     entry stack[512];  // at most wide - 1 per level and the tree is at most ~130 levels deep
     int top = 0;
-    stack[top++] = {0.0f, 0, 0};
-    while (top > 0) {
-        const entry e = stack[--top];
-        if (e.enter > limit) continue;
-        if (e.count > 0) {
+    entry current{0.0f, 0, 0};  // the root
+    for (;;) {
+        if (current.count > 0) {
             if constexpr (AnyHit) {
-                if (leaf(e.child, e.count)) return true;
+                if (leaf(current.child, current.count)) return true;
             } else {
-                leaf(e.child, e.count);
+                leaf(current.child, current.count);
                 limit = float(best) * slab_widen;
             }
-            continue;
-        }
-        const bvh_wide_node& n = tree.nodes[e.child];
-        f4 enter = {0, 0, 0, 0}, leave = {limit, limit, limit, limit};
-        for (int a = 0; a < 3; ++a) {
-            const f4 lo = row(n.lo[a]), hi = row(n.hi[a]);
-            const f4 t0 = ((negative[a] ? hi : lo) - o[a]) * inv[a];
-            const f4 t1 = ((negative[a] ? lo : hi) - o[a]) * inv[a] * slab_widen;
-            enter = enter > t0 ? enter : t0;
-            leave = leave < t1 ? leave : t1;
-        }
-        const auto in = enter <= leave;
-        // Insertion by entry distance, farthest at the bottom of this group.
-        const int base = top;
-        for (int i = 0; i < wide; ++i) {
-            if (!in[i]) continue;
-            const entry c{enter[i], n.child[i], n.count[i]};
-            int j = top++;
-            while (j > base && stack[j - 1].enter < c.enter) {
-                stack[j] = stack[j - 1];
-                --j;
+        } else {
+            const bvh_wide_node& n = tree.nodes[current.child];
+            f4 enter = {0, 0, 0, 0}, leave = {limit, limit, limit, limit};
+            for (int a = 0; a < 3; ++a) {
+                const f4 lo = row(n.lo[a]), hi = row(n.hi[a]);
+                const f4 t0 = ((negative[a] ? hi : lo) - o[a]) * inv[a];
+                const f4 t1 = ((negative[a] ? lo : hi) - o[a]) * inv[a] * slab_widen;
+                enter = enter > t0 ? enter : t0;
+                leave = leave < t1 ? leave : t1;
             }
-            stack[j] = c;
+            const auto in = enter <= leave;
+            // The children entered, sorted farthest first (at most four:
+            // insertion); all but the nearest are pushed, and the walk goes
+            // on at the nearest without a trip through the stack.
+            entry hit[wide];
+            int h = 0;
+            for (int i = 0; i < wide; ++i) {
+                if (!in[i]) continue;
+                const entry c{enter[i], n.child[i], n.count[i]};
+                int j = h++;
+                for (; j > 0 && hit[j - 1].enter < c.enter; --j) hit[j] = hit[j - 1];
+                hit[j] = c;
+            }
+            if (h > 0) {
+                for (int i = 0; i < h - 1; ++i) stack[top++] = hit[i];
+                current = hit[h - 1];
+                continue;
+            }
         }
+        // Next from the stack, skipping what lies beyond a hit found since it was pushed.
+        do {
+            if (top == 0) return false;
+            current = stack[--top];
+        } while (current.enter > limit);
     }
-    return false;
 }
 
 // c = |f|^2 - r^2 with the rounding error of each square added back (fma
