@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """plot_scaling.py - time per ray against N from an rt-bench run, as SVG.
 
-    build/bin/rt-bench > bench.txt
+    build/release/bin/rt-bench > bench.txt
     tools/bench/plot_scaling.py bench.txt tools/bench/scaling.svg
 
 Reads section 4 of rt-bench's output (the "N = ..." rows: our BVH and
