@@ -36,14 +36,16 @@ void read_all(int fd, char* data, std::size_t size) {
 
 }  // namespace
 
-void channel::send(kind what, const std::string& bytes) {
+void send_frame(int fd, std::uint8_t what, const std::string& bytes) {
     std::string frame(5, '\0');
     const std::uint32_t size = static_cast<std::uint32_t>(bytes.size() + 1);
     std::memcpy(frame.data(), &size, 4);
     frame[4] = static_cast<char>(what);
     frame += bytes;
-    write_all(fd_, frame.data(), frame.size());
+    write_all(fd, frame.data(), frame.size());
 }
+
+void channel::send(kind what, const std::string& bytes) { send_frame(fd_, static_cast<std::uint8_t>(what), bytes); }
 
 message channel::receive() {
     std::uint32_t size = 0;

@@ -50,6 +50,10 @@ private:
     int fd_;
 };
 
+// One framed message (a 32-bit length, the kind byte, the bytes) written whole on fd; the channel's
+// messages and the judge's reports to the grader (judge_main.cpp) are framed this way.
+void send_frame(int fd, std::uint8_t what, const std::string& bytes);
+
 // Messages larger than this are refused: a runner cannot make the judge allocate without end.
 inline constexpr std::uint32_t max_message_bytes = 64u << 20;
 

@@ -1,11 +1,15 @@
 // judge.cpp — the judge's connection to the runner.
 //
-// The grader starts the runner (in its sandbox) and gives the judge one end of a socket in RT_RPC_FD.
-// Without the grader, RT_RUNNER=path/to/chNN_runner makes the judge start the runner itself (for the
-// course's own tests and for debugging).
+// The grader runs one judge process for many test cases and gives it the runner over a control socket
+// (RT_JUDGE_CONTROL_FD): at the start of each case the judge says which case begins and whether its
+// runner broke, and the grader answers "go on" or passes a fresh runner's socket (SCM_RIGHTS). Without
+// the grader, RT_RUNNER=path/to/chNN_runner makes the judge start the runner itself (for the course's own
+// tests and for debugging), and start it again after it broke.
 #include "judge.hpp"
 
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <cstdlib>
 #include <vector>
 
@@ -21,7 +25,8 @@ namespace {
 
 struct connection {
     int fd = -1;
-    std::string broken;  // why the runner is gone; empty while it answers
+    std::string broken;          // why the runner is gone; empty while it answers
+    bool broke_in_case = false;  // it broke during the current test case
 };
 
 int start_runner(const char* path) {
@@ -35,22 +40,47 @@ int start_runner(const char* path) {
         ::_exit(127);
     }
     ::close(ends[1]);
-    return child > 0 ? ends[0] : -1;
+    if (child > 0) return ends[0];
+    ::close(ends[0]);
+    return -1;
 }
+
+const char* no_runner = "no runner: the grader gives one; by hand, set RT_RUNNER=build/.../chNN_runner";
 
 connection& runner() {
     static connection c = [] {
         connection made;
-        if (const char* fd = std::getenv("RT_RPC_FD")) {
-            made.fd = std::atoi(fd);
-        } else if (const char* path = std::getenv("RT_RUNNER")) {
-            made.fd = start_runner(path);
+        if (control_fd() < 0) {
+            if (const char* path = std::getenv("RT_RUNNER")) made.fd = start_runner(path);
         }
-        if (made.fd < 0)
-            made.broken = "no runner: the grader starts one; by hand, set RT_RUNNER=build/.../chNN_runner";
+        if (made.fd < 0) made.broken = no_runner;  // under the grader: the first case brings one
         return made;
     }();
     return c;
+}
+
+// The grader's one-byte answer to a case's start: 'G' (go on with the runner you have) or 'R' with a
+// fresh runner's socket attached. Returns the kind, and the descriptor in fd (-1 when none came).
+char receive_reply(int control, int& fd) {
+    char what = 0;
+    alignas(cmsghdr) char space[CMSG_SPACE(sizeof(int))];
+    for (;;) {
+        iovec io{&what, 1};
+        msghdr m{};
+        m.msg_iov = &io;
+        m.msg_iovlen = 1;
+        m.msg_control = space;
+        m.msg_controllen = sizeof space;
+        fd = -1;
+        const ssize_t n = ::recvmsg(control, &m, MSG_CMSG_CLOEXEC);
+        if (n < 0 && errno == EINTR) continue;
+        if (n != 1) return 0;
+        for (cmsghdr* c = CMSG_FIRSTHDR(&m); c != nullptr; c = CMSG_NXTHDR(&m, c)) {
+            if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_RIGHTS && c->cmsg_len == CMSG_LEN(sizeof(int)))
+                std::memcpy(&fd, CMSG_DATA(c), sizeof(int));
+        }
+        return what;
+    }
 }
 
 std::vector<erased_callback>& callbacks() {
@@ -100,12 +130,51 @@ std::string retell(const std::string& function, exception_kind k, const std::str
 }
 
 [[noreturn]] void gone(connection& c, const std::string& function, const std::string& why) {
+    c.broke_in_case = true;
     c.broken = "the runner (the process that runs your code) stopped answering during a call to " +
                plain_name(function) + ": " + why;
     throw runner_gone(c.broken);
 }
 
 }  // namespace
+
+int control_fd() {
+    static const int fd = [] {
+        const char* text = std::getenv("RT_JUDGE_CONTROL_FD");
+        return text != nullptr ? std::atoi(text) : -1;
+    }();
+    return fd;
+}
+
+void begin_case(const std::string& name) {
+    connection& c = runner();
+    c.broke_in_case = false;
+    const int control = control_fd();
+    if (control < 0) {
+        const char* path = std::getenv("RT_RUNNER");
+        if (!c.broken.empty() && path != nullptr) {
+            if (c.fd >= 0) ::close(c.fd);
+            c.fd = start_runner(path);
+            c.broken = c.fd < 0 ? no_runner : "";
+        }
+        return;
+    }
+    // "B", then 1 when the runner this judge was given broke (the grader replaces it), then the case's name.
+    const bool broke = c.fd >= 0 && !c.broken.empty();
+    send_frame(control, 'B', (broke ? "1" : "0") + name);
+    int fd = -1;
+    const char what = receive_reply(control, fd);
+    if (what == 'R' && fd >= 0) {
+        if (c.fd >= 0) ::close(c.fd);
+        c.fd = fd;
+        c.broken.clear();
+    } else if (what != 'G') {
+        if (fd >= 0) ::close(fd);
+        std::_Exit(4);  // the grader is gone or wants no more cases: nothing left to report to
+    }
+}
+
+bool runner_broke_in_case() { return runner().broke_in_case; }
 
 callback_scope::callback_scope() : mark_(callbacks().size()) {}
 callback_scope::~callback_scope() { callbacks().resize(mark_); }

@@ -22,6 +22,19 @@ struct runner_gone : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// The judge's link to the grader when the grader runs it (RT_JUDGE_CONTROL_FD), or -1 (by hand, ctest).
+// One judge process runs all the cases it is given; judge_main.cpp reports each one on this socket.
+int control_fd();
+
+// At the start of every test case: tells the grader which case begins and whether the runner broke, and
+// takes the runner the grader gives for it (a fresh one after a crash, a hang or garbage on the channel).
+// Without the grader, RT_RUNNER's program is started again when the previous one broke.
+void begin_case(const std::string& name);
+
+// Whether the runner stopped answering during the current case: that case fails whatever its checks
+// said (a CHECK_THROWS must not count the runner's crash as the exception it expected).
+bool runner_broke_in_case();
+
 // Callbacks given during one call live exactly as long as that call.
 class callback_scope {
 public:

@@ -1,5 +1,8 @@
 // runner.cpp — main() of every chNN_runner: answer the judge's calls with the student's code.
 //
+// One runner serves a chapter's cases one after another (the grader hands its socket to each judge in
+// turn) until the grader closes the channel; whatever state the student's code keeps lives on.
+//
 // `chNN_runner --probe` only starts and exits: the grader runs it once per chapter, so a static
 // initialiser that hangs or crashes fails the chapter's tests at once instead of one timeout per test.
 #include "runner.hpp"
@@ -84,7 +87,7 @@ int main(int argc, char** argv) {
             answer(ch, m.bytes);
         }
     } catch (const protocol_error&) {
-        // The judge closed the channel: the test is over.
+        // The grader closed the channel: the chapter's tests are over (or this runner was replaced).
     }
     // _exit: no static destructor or atexit handler of the student's runs after the last answer.
     ::_exit(0);

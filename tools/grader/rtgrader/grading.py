@@ -2,6 +2,7 @@
 into the instructor's test executables, run every test case in its own
 limited process, render each chapter's picture, and score the lot."""
 
+import dataclasses
 import os
 import queue
 import re
@@ -168,6 +169,7 @@ class Grader:
                 os.chown(os.path.join(work, cid), *user)
             return found
 
+        phase = time.monotonic()
         with ThreadPoolExecutor(max_workers=lanes) as pool:
             compiled = dict(zip(to_compile, pool.map(compile_one, to_compile)))
         objects = {}
@@ -179,6 +181,8 @@ class Grader:
 
         # 2. Link them into the instructor's executables (one build tree: take the lock).
         ready = [cid for cid in self.chapter_ids if cid not in problems]
+        self._per.times = {"compile": time.monotonic() - phase, "tests": 0.0, "renders": 0.0}
+        phase = time.monotonic()
         with tree.locked(self.tree.folder):
             link_errors = self.tree.link(objects, ready, logs)
             for cid in ready:
@@ -187,6 +191,8 @@ class Grader:
                 else:
                     self._take_executables(chapters[cid], os.path.join(work, "bin", cid))
         ready = [cid for cid in ready if cid not in problems]
+
+        self._per.times["link"] = time.monotonic() - phase
 
         # 3. Run the tests and the render of every chapter that built.
         results = []
@@ -199,6 +205,9 @@ class Grader:
                                                 f"(see '{cid} compilation')"))
                 continue
             results += self._run_chapter(chapters[cid], os.path.join(work, cid), logs, out_dir, user)
+        # Where the time went, for the instructor (tools/grader/README.md, "Measured").
+        self.log(f"grader: {sandbox.counts['runs']} sandboxed processes, {judge.counts['judges']} judge processes; "
+                 + ", ".join(f"{k} {v:.1f} s" for k, v in self._per.times.items()))
         if suspicious:   # for the instructor's eyes only: never in results.json, which the student sees
             self.log("grader: instructor note: words to look at in the submission: " + "; ".join(suspicious))
         return results, notes
@@ -272,44 +281,61 @@ class Grader:
     # --- running ------------------------------------------------------------------------
     def _run_chapter(self, ch, folder, logs, out_dir, user):
         results = []
-        chapter_end = time.monotonic() + self.options.chapter_seconds
-        timeouts = 0
+        budget = _ChapterBudget(self.options, self._per.deadline)
         runner = os.path.join(os.path.dirname(folder), "bin", ch["id"], "runner")
         cases = [n for n in self._names_of(ch["id"]) if n[1] in ("public", "hidden")]
+        started = time.monotonic()
         probe = self._probe(runner, logs, user) if cases else ""
+        outcomes = {}
+        if cases and not probe:
+            host = judge.RunnerHost(self._runner_starter(runner, logs, user, budget))
+            try:
+                for kind in ("public", "hidden"):
+                    wanted = [case for _, k, _, case in cases if k == kind]
+                    if wanted and not budget.reason():
+                        found = judge.run_cases(ch[f"{kind}_judge"], wanted, host, self.options.limits,
+                                                self._per.work, os.path.join(logs, f"{ch['id']}-{kind}-judge"),
+                                                budget)
+                        outcomes.update({(kind, c): o for c, o in found.items()})
+            finally:
+                host.close()
+        self._per.times["tests"] += time.monotonic() - started
+        started = time.monotonic()
         for name, kind, cid, case in cases:
-            skip = self._over_budget(chapter_end, timeouts)
-            if probe or skip:
-                results.append(self._result(name, kind, cid, False, probe or skip))
+            found = outcomes.get((kind, case))
+            if probe or found is None:
+                results.append(self._result(name, kind, cid, False, probe or budget.reason() or
+                                            "not run: the judge stopped before this test"))
                 continue
-            passed, output, timed_out = self._run_case(ch[f"{kind}_judge"], runner, case, kind, logs, user)
-            timeouts += timed_out
-            results.append(self._result(name, kind, cid, passed, output))
+            results.append(self._result(name, kind, cid, found.passed, self._feedback(found, kind)))
         if ch.get("reference") and any(n[1] == "render" for n in self._names_of(ch["id"])):
             late = time.monotonic() > self._per.deadline
             passed, output = (False, f"not run: the submission's tests used their time budget "
                                      f"({self.options.submission_seconds:g} s)") if late else \
                 self._render(ch, folder, logs, out_dir, user)
             results.append(self._result(f"{ch['id']}.render", "render", ch["id"], passed, output))
+        self._per.times["renders"] += time.monotonic() - started
         return results
 
-    def _over_budget(self, chapter_end, timeouts):
-        """'' while a chapter may run more tests, else why its remaining tests are skipped."""
-        now = time.monotonic()
-        if timeouts >= self.options.max_timeouts:
-            return (f"not run: {timeouts} tests of this chapter did not finish in time, so its remaining tests "
-                    "were skipped (does your code hang, or wait at exit?)")
-        if now > chapter_end:
-            return f"not run: this chapter's tests used their time budget ({self.options.chapter_seconds:g} s)"
-        if now > self._per.deadline:
-            return f"not run: the submission's tests used their time budget ({self.options.submission_seconds:g} s)"
-        return ""
-
-    def _run_runner(self, argv, log_path, user, work, env_extra=None, pass_fds=()):
+    def _run_runner(self, argv, log_path, user, work, env_extra=None, pass_fds=(), limits=None, stopper=None):
         """Runs the student's runner in the sandbox (it reads only itself, writes only a private /tmp).
         work is passed in: the runner runs in a thread of its own, where self._per is not this grading's."""
-        return sandbox.run(argv, limits=self.options.limits, log_path=log_path, user=user, inputs=[argv[0]],
-                           env_extra=env_extra, pass_fds=pass_fds, private_root=work)
+        return sandbox.run(argv, limits=limits or self.options.limits, log_path=log_path, user=user,
+                           inputs=[argv[0]], env_extra=env_extra, pass_fds=pass_fds, private_root=work,
+                           stopper=stopper)
+
+    def _runner_starter(self, runner, logs, user, budget):
+        """How the chapter's RunnerHost starts a runner. A runner serves many cases: each case's time
+        limit is the grader's (judge.py); the runner's own wall-clock and CPU limits are the
+        chapter's remaining budget."""
+        work = self._per.work
+        base = self.options.limits
+
+        def start(env, fds, stopper):
+            seconds = max(1.0, budget.seconds_left())
+            limits = dataclasses.replace(base, wall_seconds=seconds, cpu_seconds=int(seconds) + 1)
+            return self._run_runner([runner], os.path.join(logs, "runner"), user, work, env, fds, limits, stopper)
+        return start
 
     def _probe(self, runner, logs, user):
         """'' if the student's code starts (its static initialisers end), else why not (every case then fails)."""
@@ -317,19 +343,14 @@ class Grader:
         return judge.probe(lambda argv: self._run_runner(argv, os.path.join(logs, "probe"), user, work), runner,
                            self.options.limits)
 
-    def _run_case(self, judge_exe, runner, case, kind, logs, user):
-        limits = self.options.limits
-        work = self._per.work
-        found = judge.run_case(judge_exe, runner, case, limits, work,
-                               lambda argv, env, fds: self._run_runner(argv, os.path.join(logs, "runner"), user,
-                                                                       work, env, fds))
+    def _feedback(self, found, kind):
+        """What results.json says about one case: the judge's report, trimmed (hidden: concepts only)."""
         output = _clean_doctest_output(found.judge_output)
         if kind == "hidden":
             output = _hidden_feedback(output)
-        ending = "" if found.passed else judge.runner_ending(found.runner, limits)
+        ending = "" if found.passed else judge.runner_ending(found.runner, self.options.limits)
         text = "\n".join(t for t in (found.reason, ending, trim(output, OUTPUT_SHOWN)) if t)
-        timed_out = found.timed_out or bool(found.runner and found.runner.timed_out)
-        return found.passed, text.strip() or ("passed" if found.passed else "failed"), timed_out
+        return text.strip() or ("passed" if found.passed else "failed")
 
     def _render(self, ch, folder, logs, out_dir, user):
         limits = self.options.limits
@@ -396,6 +417,31 @@ class Grader:
 
     def _compilation_entry(self, cid, message):
         return TestResult(f"{cid} compilation", "compilation", cid, False, message, 0, "visible")
+
+
+class _ChapterBudget:
+    """A chapter's time budget, the submission's, and the chapter's timeouts (judge.run_cases counts them)."""
+
+    def __init__(self, options, submission_deadline):
+        self.options = options
+        self.chapter_end = time.monotonic() + options.chapter_seconds
+        self.submission_end = submission_deadline
+        self.timeouts = 0
+
+    def seconds_left(self):
+        return min(self.chapter_end, self.submission_end) - time.monotonic()
+
+    def reason(self):
+        """'' while the chapter may start more tests, else why its remaining tests are skipped."""
+        now = time.monotonic()
+        if self.timeouts >= self.options.max_timeouts:
+            return (f"not run: {self.timeouts} tests of this chapter did not finish in time, so its remaining "
+                    "tests were skipped (does your code hang, or wait at exit?)")
+        if now > self.chapter_end:
+            return f"not run: this chapter's tests used their time budget ({self.options.chapter_seconds:g} s)"
+        if now > self.submission_end:
+            return f"not run: the submission's tests used their time budget ({self.options.submission_seconds:g} s)"
+        return ""
 
 
 _NOISE = re.compile(r"^(\[doctest\] .*|={20,})$\n?", re.M)

@@ -14,10 +14,12 @@ Three modes, best first (tools/grader/README.md, "Isolation"):
   none        no namespaces and not root: the code runs as the grader's own
               user with resource limits only. Said loudly too.
 
-Independently, a cgroup v2 per run when the grader may create cgroups:
-cgroup.kill ends every process of the run at once, and memory.max (which
-counts memfd and tmpfs pages, unlike the address-space limit) and pids.max
-when those controllers can be enabled.
+Independently, a cgroup per run when the grader may create cgroups (class
+Cgroups): in cgroup v2, cgroup.kill ends every process of the run at once, and
+memory.max (which counts memfd and tmpfs pages, unlike the address-space
+limit) and pids.max when those controllers can be enabled; a controller that
+v2 lacks is taken from a cgroup v1 hierarchy where the machine has one
+(memory.limit_in_bytes counts the same pages).
 
 RT_GRADER_ISOLATION=fallback (or users / none) forces the fallback, e.g.
 in the grader's own tests; RT_GRADER_CGROUP=off turns cgroups off.
@@ -71,13 +73,32 @@ def system_binds():
 def namespace_args(tmp_bytes, shm_bytes):
     """The namespaces and the private, size-limited /tmp and /dev/shm."""
     args = ["--unshare-pid", "--unshare-net", "--unshare-ipc", "--unshare-uts", "--unshare-cgroup-try",
-            "--die-with-parent", "--new-session", "--proc", "/proc", "--dev", "/dev",
+            "--die-with-parent", "--proc", "/proc", "--dev", "/dev",
             "--perms", "1777", "--size", str(tmp_bytes), "--tmpfs", "/tmp",
             "--perms", "1777", "--size", str(shm_bytes), "--tmpfs", "/dev/shm"]
     if os.geteuid() != 0:
         # Unprivileged bwrap works in a user namespace; forbid the code a further one.
         args = ["--unshare-user", "--disable-userns"] + args
     return args
+
+
+def leave_terminal():
+    """In the child, before exec: give up the controlling terminal (TIOCNOTTY), so the sandboxed
+    code cannot write to the instructor's terminal or push input into it (TIOCSTI) through
+    /dev/tty. This, not a new session (setsid, bwrap --new-session), because a new session is a
+    new scheduling group (autogroup): under load every call between the judge, in the grader's
+    session, and a runner in a session of its own waited for the other group's turn (a chapter's
+    calls took 6 times longer)."""
+    import fcntl
+    import termios
+    try:
+        fd = os.open("/dev/tty", os.O_RDWR | os.O_NOCTTY)
+    except OSError:
+        return      # no controlling terminal
+    try:
+        fcntl.ioctl(fd, termios.TIOCNOTTY)
+    finally:
+        os.close(fd)
 
 
 def drop_privileges(setpriv, uid, gid):
@@ -136,50 +157,76 @@ def detect():
                    "as the grader's own user with resource limits only (it could read anything this user can)"))
         if os.environ.get("RT_GRADER_CGROUP", "auto").lower() != "off":
             iso.cgroup = Cgroups.detect()
+        iso.notes.append(_memory_note(iso.cgroup))
         _cached[forced] = iso
         return iso
 
 
-class Cgroups:
-    """A cgroup v2 per run, below one the grader creates for itself."""
+def _memory_note(cgroup):
+    """Which mechanism bounds a run's memory, memfd and /dev/shm included (results.json's notes)."""
+    if cgroup and "memory" in cgroup.controllers:
+        return "memory limit per run: cgroup v2 memory.max (memfd and /dev/shm pages included)"
+    if cgroup and "memory" in cgroup.v1:
+        return "memory limit per run: cgroup v1 memory controller (memfd and /dev/shm pages included)"
+    return ("memory limit per run: address-space and file-size limits only (no memory cgroup here): memfd and "
+            "/dev/shm pages are bounded by the file-size limit times the open-files limit")
 
-    def __init__(self, base, controllers, can_kill):
-        self.base = base
-        self.controllers = controllers        # subset of {"memory", "pids"}
+
+class Cgroups:
+    """A cgroup per run, below one the grader creates inside its own: in the
+    cgroup v2 hierarchy (cgroup.kill; memory.max and pids.max when those
+    controllers are delegated there) and, for a controller v2 lacks but a
+    cgroup v1 hierarchy has (the course VM binds memory and pids to v1), in
+    that v1 hierarchy: memory.limit_in_bytes and memory.memsw.limit_in_bytes
+    (which count the shmem pages of memfd, /dev/shm and tmpfs files, like
+    memory.max) and pids.max. A run's cgroup is the list of its folders."""
+
+    def __init__(self, base, controllers, can_kill, v1=None):
+        self.base = base                      # v2 folder of this grader, or None
+        self.controllers = controllers        # subset of {"memory", "pids"} enabled in v2
         self.can_kill = can_kill              # cgroup.kill exists (Linux 5.14)
+        self.v1 = v1 or {}                    # controller -> v1 folder of this grader
         self._counter = 0
         self._count_lock = threading.Lock()
 
     def describe(self):
-        enabled = ", ".join(sorted(self.controllers)) or "no memory/pids controllers (not delegated here)"
-        return f"cgroup v2 per run in {self.base} ({enabled}{'; cgroup.kill' if self.can_kill else ''})"
+        parts = []
+        if self.base:
+            enabled = ", ".join(sorted(self.controllers)) or "no memory/pids controllers (not delegated here)"
+            parts.append(f"cgroup v2 per run in {self.base} ({enabled}{'; cgroup.kill' if self.can_kill else ''})")
+        for c, folder in sorted(self.v1.items()):
+            what = {"memory": "memory.limit_in_bytes + memsw, counting memfd and /dev/shm",
+                    "pids": "pids.max"}[c]
+            parts.append(f"cgroup v1 {c} per run in {folder} ({what})")
+        return "; ".join(parts) or "no cgroup"
 
-    @staticmethod
-    def _mount_point():
-        try:
-            with open("/proc/self/mountinfo") as f:
-                for line in f:
-                    left, _, right = line.partition(" - ")
-                    if right.split()[0] == "cgroup2":
-                        return left.split()[4]
-        except OSError:
-            pass
-        return None
+    def counted(self):
+        """Which limits a run's cgroup enforces: {'memory', 'pids'} or a part of it."""
+        return set(self.controllers) | set(self.v1)
 
     @classmethod
     def detect(cls):
-        mount = cls._mount_point()
-        if not mount:
+        v2 = cls._detect_v2()
+        base, controllers, can_kill = v2 if v2 else (None, set(), False)
+        v1 = {}
+        for c in ("memory", "pids"):
+            if c not in controllers:
+                folder = _make_v1_base(c)
+                if folder:
+                    v1[c] = folder
+        if not base and not v1:
             return None
-        own = None
-        try:
-            with open("/proc/self/cgroup") as f:
-                for line in f:
-                    if line.startswith("0::"):
-                        own = line[3:].strip()
-        except OSError:
-            return None
-        if own is None:
+        import atexit
+        for folder in [base] + list(v1.values()):
+            if folder:
+                atexit.register(_remove_quietly, folder)
+        return cls(base, controllers, can_kill, v1)
+
+    @staticmethod
+    def _detect_v2():
+        mount = _mount_points().get("cgroup2")
+        own = _own_cgroups().get("")
+        if not mount or own is None:
             return None
         parent = os.path.normpath(mount + "/" + own)
         _remove_stale(parent)
@@ -193,66 +240,140 @@ class Cgroups:
             # A controller reaches our runs only when enabled in the parent's and our base's subtree.
             if _enable(parent, c) and _enable(base, c):
                 controllers.add(c)
-        cg = cls(base, controllers, os.path.exists(os.path.join(base, "cgroup.kill")))
-        import atexit
-        atexit.register(_remove_quietly, base)
-        return cg
+        return base, controllers, os.path.exists(os.path.join(base, "cgroup.kill"))
 
     def create(self, memory_bytes, processes):
-        """A new cgroup for one run, with its limits; returns its path or None."""
+        """New cgroups for one run, with its limits; returns their folders (a list) or None."""
         with self._count_lock:
             self._counter += 1
             n = self._counter
-        path = os.path.join(self.base, f"run-{n}")
-        try:
-            os.mkdir(path)
-        except OSError:
-            return None
-        if "memory" in self.controllers:
-            _write(path, "memory.max", str(memory_bytes))
-            _write(path, "memory.swap.max", "0")
-        if "pids" in self.controllers:
-            _write(path, "pids.max", str(processes))
-        return path
+        made = []
+        if self.base:
+            path = os.path.join(self.base, f"run-{n}")
+            try:
+                os.mkdir(path)
+                made.append(path)
+            except OSError:
+                pass
+            else:
+                if "memory" in self.controllers:
+                    _write(path, "memory.max", str(memory_bytes))
+                    _write(path, "memory.swap.max", "0")
+                if "pids" in self.controllers:
+                    _write(path, "pids.max", str(processes))
+        for c, folder in sorted(self.v1.items()):
+            path = os.path.join(folder, f"run-{n}")
+            try:
+                os.mkdir(path)
+            except OSError:
+                continue
+            made.append(path)
+            if c == "memory":
+                # memsw (memory + swap) after the memory limit: it may never be below it.
+                _write(path, "memory.limit_in_bytes", str(memory_bytes))
+                _write(path, "memory.memsw.limit_in_bytes", str(memory_bytes))
+            else:
+                _write(path, "pids.max", str(processes))
+        return made or None
 
     @staticmethod
-    def oom_killed(path):
-        try:
-            with open(os.path.join(path, "memory.events")) as f:
-                return any(line.split()[0] == "oom_kill" and int(line.split()[1]) > 0 for line in f)
-        except (OSError, ValueError, IndexError):
-            return False
-
-    def kill_and_remove(self, path):
-        """Ends every process of the run (all at once with cgroup.kill) and removes the cgroup."""
-        import signal
-        import time
-        for _ in range(200):
-            if self.can_kill:
-                _write(path, "cgroup.kill", "1")
-            else:
-                for pid in _pids(path):
-                    try:
-                        os.kill(pid, signal.SIGKILL)
-                    except OSError:
-                        pass
-            try:
-                os.rmdir(path)
-                return True
-            except FileNotFoundError:
-                return True
-            except OSError:
-                time.sleep(0.005)  # still populated: the kill takes a moment
+    def oom_killed(paths):
+        for path in paths:
+            for name, key in (("memory.events", "oom_kill"), ("memory.oom_control", "oom_kill")):
+                try:
+                    with open(os.path.join(path, name)) as f:
+                        if any(line.split()[0] == key and int(line.split()[1]) > 0 for line in f if line.strip()):
+                            return True
+                except (OSError, ValueError, IndexError):
+                    pass
         return False
 
+    def kill_and_remove(self, paths):
+        """Ends every process of the run (all at once with cgroup.kill) and removes its cgroups."""
+        import time
+        done = True
+        for path in paths:
+            for _ in range(200):
+                _kill_members(path)
+                try:
+                    os.rmdir(path)
+                    break
+                except FileNotFoundError:
+                    break
+                except OSError:
+                    time.sleep(0.005)  # still populated: the kill takes a moment
+            else:
+                done = False
+        return done
 
-def join_cgroup(path):
-    """In the child, before exec: move this process into the run's cgroup."""
-    fd = os.open(os.path.join(path, "cgroup.procs"), os.O_WRONLY)
+
+def _mount_points():
+    """{'cgroup2': folder, 'memory': folder, 'pids': folder, ...} of the cgroup mounts."""
+    found = {}
     try:
-        os.write(fd, b"0")
-    finally:
-        os.close(fd)
+        with open("/proc/self/mountinfo") as f:
+            for line in f:
+                left, _, right = line.partition(" - ")
+                fields = right.split()
+                if not fields:
+                    continue
+                if fields[0] == "cgroup2":
+                    found.setdefault("cgroup2", left.split()[4])
+                elif fields[0] == "cgroup" and len(fields) >= 3:
+                    for option in fields[2].split(","):
+                        found.setdefault(option, left.split()[4])
+    except OSError:
+        pass
+    return found
+
+
+def _own_cgroups():
+    """{'': v2 path, 'memory': v1 path, ...} of this process (/proc/self/cgroup)."""
+    found = {}
+    try:
+        with open("/proc/self/cgroup") as f:
+            for line in f:
+                _, controllers, path = line.rstrip("\n").split(":", 2)
+                for c in controllers.split(",") if controllers else [""]:
+                    found[c] = path
+    except (OSError, ValueError):
+        pass
+    return found
+
+
+def _make_v1_base(controller):
+    """This grader's folder in the cgroup v1 hierarchy of controller, inside its own cgroup there
+    (so whatever contains the grader still contains its runs), or None."""
+    mount = _mount_points().get(controller)
+    own = _own_cgroups().get(controller)
+    if not mount or own is None:
+        return None
+    parent = os.path.normpath(mount + "/" + own)
+    _remove_stale(parent)
+    base = os.path.join(parent, f"rt-grader-{os.getpid()}")
+    limit = "memory.limit_in_bytes" if controller == "memory" else "pids.max"
+    try:
+        os.makedirs(base, exist_ok=True)
+        probe = os.path.join(base, "probe")
+        os.makedirs(probe, exist_ok=True)
+        ok = _write(probe, limit, str(1 << 30) if controller == "memory" else "64")
+        os.rmdir(probe)
+    except OSError:
+        ok = False
+    if not ok:
+        _remove_quietly(base)
+        return None
+    return base
+
+
+def join_cgroup(paths):
+    """In the child, before exec: move this process into the run's cgroups."""
+    for path in paths:
+        fd = os.open(os.path.join(path, "cgroup.procs"), os.O_WRONLY)
+        try:
+            os.write(fd, b"0")
+        finally:
+            os.close(fd)
 
 
 def _pids(path):
@@ -285,13 +406,27 @@ def _write(folder, name, value):
         return False
 
 
+def _kill_members(path):
+    """Kills the processes of a cgroup: all at once with cgroup.kill (v2), else one by one (v1:
+    called again until the cgroup can be removed, so a process forked meanwhile is caught too)."""
+    import signal
+    if _write(path, "cgroup.kill", "1"):
+        return
+    for pid in _pids(path):
+        try:
+            os.kill(pid, signal.SIGKILL)
+        except OSError:
+            pass
+
+
 def _remove_quietly(base):
     try:
         for name in os.listdir(base):
-            if name.startswith("run-"):
-                _write(os.path.join(base, name), "cgroup.kill", "1")
+            path = os.path.join(base, name)
+            if name.startswith(("run-", "probe")) and os.path.isdir(path):
+                _kill_members(path)
                 try:
-                    os.rmdir(os.path.join(base, name))
+                    os.rmdir(path)
                 except OSError:
                     pass
         os.rmdir(base)

@@ -18,11 +18,12 @@ case, the chapter program) and every step that reads what it produced
 - fallback (users / none): today's isolation by user; inputs the sandbox user
   cannot read (a repository in root's 0700 home) are copied to a readable
   place first; leftovers are killed and removed by user id.
-- always: its own session and process group, killed at the wall-clock limit;
+- always: its own process group, no controlling terminal, killed at the wall-clock limit;
   resource limits (CPU seconds, address space, size of any file written,
   which also caps the captured output and every memfd, open files,
-  processes); a cgroup v2 per run where possible (cgroup.kill, memory.max
-  counting memfd and tmpfs, pids.max); stdout and stderr go to a file the
+  processes); a cgroup per run where possible (v2: cgroup.kill, memory.max
+  counting memfd and tmpfs, pids.max; memory and pids from cgroup v1 where v2
+  lacks them: isolation.Cgroups); stdout and stderr go to a file the
   grader opened, read back capped.
 """
 
@@ -45,6 +46,7 @@ from . import fsutil, isolation
 MiB = 1024 * 1024
 _users_lock = threading.Lock()
 _mirror_lock = threading.Lock()
+counts = {"runs": 0}     # sandboxed processes started by this grader process (the grader's log says how many)
 # World-writable places a sandbox user could leave files in when there is no
 # private /tmp (fallback): emptied of that user's entries after every run.
 WORLD_WRITABLE = ("/tmp", "/var/tmp", "/dev/shm", "/run/lock", "/dev/mqueue")
@@ -70,6 +72,40 @@ class Outcome:
     output_truncated: bool
     seconds: float
     extra: dict = field(default_factory=dict)
+
+
+class Stopper:
+    """Lets another thread end a run before its wall-clock limit (the grader's
+    time limit per test case, for a runner that serves many cases). The run
+    then counts as timed out."""
+
+    def __init__(self):
+        self._lock = threading.Lock()
+        self._pgid = None
+        self.stopped = False
+
+    def _started(self, pgid):
+        with self._lock:
+            self._pgid = pgid
+            if self.stopped:
+                _kill_group(pgid)
+
+    def _ended(self):
+        with self._lock:
+            self._pgid = None
+
+    def stop(self):
+        with self._lock:
+            self.stopped = True
+            if self._pgid is not None:
+                _kill_group(self._pgid)
+
+
+def _kill_group(pgid):
+    try:
+        os.killpg(pgid, signal.SIGKILL)
+    except (ProcessLookupError, PermissionError):
+        pass
 
 
 def is_root():
@@ -377,7 +413,7 @@ def _bwrap_command(iso, argv, limits, inputs, scratch, cwd, user, seccomp_fd=Non
 
 
 def run(argv, *, limits, log_path, user=None, inputs=(), scratch=None, env_extra=None, pass_fds=(),
-        output_cap=64 * 1024, private_root=None, iso=None):
+        output_cap=64 * 1024, private_root=None, iso=None, stopper=None):
     """Runs argv in the sandbox under the limits; returns an Outcome.
 
     user:     (uid, gid) of the sandbox user (root), or None (the grader's own user)
@@ -388,8 +424,10 @@ def run(argv, *, limits, log_path, user=None, inputs=(), scratch=None, env_extra
     private_root: a folder of the grader's, traversable by the sandbox user, for
               the fallback's copies and private folders (default: the system's temp folder)
     pass_fds: descriptors it inherits (pipes to the grader)
+    stopper:  a Stopper another thread may use to end the run early (then timed out)
     """
     iso = iso or isolation.detect()
+    counts["runs"] += 1
     inputs = list(inputs)
     program = os.path.abspath(argv[0]) if os.path.isabs(argv[0]) else None
     if program and not program.startswith(("/usr/", "/bin/")) and not (
@@ -436,6 +474,7 @@ def run(argv, *, limits, log_path, user=None, inputs=(), scratch=None, env_extra
     cgroup = iso.cgroup.create(limits.memory_bytes, limits.processes + 8) if iso.cgroup else None
 
     def prepare_child():  # runs in the child (as root when root), just before exec
+        isolation.leave_terminal()
         if cgroup and os.geteuid() == os.getuid():
             isolation.join_cgroup(cgroup)
         resource.setrlimit(resource.RLIMIT_CPU, (limits.cpu_seconds, limits.cpu_seconds + 1))
@@ -453,23 +492,28 @@ def run(argv, *, limits, log_path, user=None, inputs=(), scratch=None, env_extra
         with open(log_path, "wb") as log:
             proc = subprocess.Popen(cmd, cwd=cwd if iso.mode != isolation.NAMESPACES else "/",
                                     env=env, stdin=subprocess.DEVNULL, stdout=log, stderr=log,
-                                    start_new_session=True, preexec_fn=prepare_child, pass_fds=pass_fds,
+                                    process_group=0, preexec_fn=prepare_child, pass_fds=pass_fds,
                                     close_fds=True, **kwargs)
         if seccomp_fd is not None:
             os.close(seccomp_fd)
             seccomp_fd = None
+        if stopper is not None:
+            stopper._started(proc.pid)
         timed_out = False
         try:
             proc.wait(timeout=limits.wall_seconds)
         except subprocess.TimeoutExpired:
             timed_out = True
+        if stopper is not None:
+            stopper._ended()
+            timed_out = timed_out or stopper.stopped
         oom = bool(cgroup) and iso.cgroup.oom_killed(cgroup)
         _end_run(proc.pid, iso, user, token, cgroup)
         proc.wait()
     finally:
         if seccomp_fd is not None:
             os.close(seccomp_fd)
-        if cgroup and os.path.isdir(cgroup):
+        if cgroup and any(os.path.isdir(p) for p in cgroup):
             iso.cgroup.kill_and_remove(cgroup)
         if iso.mode != isolation.NAMESPACES and user is not None:
             _remove_leftovers(user[0])

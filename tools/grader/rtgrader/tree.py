@@ -74,7 +74,11 @@ def sync_source(repo, dest, grading_folder=None, keep=()):
             os.makedirs(os.path.dirname(dst), exist_ok=True)
             if os.path.exists(dst):
                 os.chmod(dst, 0o644)
-            shutil.copy2(src, dst)
+            # Copied with a new time stamp, not the source's: a source file may be older than the objects
+            # built from its previous content (a copy or an archive keeps old time stamps) and ninja would
+            # then keep the stale objects.
+            shutil.copyfile(src, dst)
+            shutil.copymode(src, dst)
             changed += 1
     for dirpath, _, filenames in os.walk(dest):
         for name in filenames:
