@@ -133,7 +133,10 @@ class Grader:
         notes += self.iso.notes
         self._per.work = work
         self._per.deadline = time.monotonic() + self.options.submission_seconds
-        if user is None:
+        if user is None and self.iso.mode == isolation.NAMESPACES:
+            notes.append("not root: the submission's code runs as the grader's own user, inside a user namespace "
+                         "of unprivileged bubblewrap (it sees only its own files)")
+        elif user is None:
             notes.append("isolation by user is off (the grader is not running as root): the submission's code "
                          "runs as the grader's own user")
         if not os.path.isdir(submission):

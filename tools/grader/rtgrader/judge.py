@@ -228,6 +228,10 @@ def _one_judge(judge, cases, host, limits, cwd, log_path, budget, results):
             proc.kill()
         proc.wait()
         grader_end.close()
+    if proc.returncode not in (0, 1) and has_runner is not None:
+        # The judge crashed or was killed: its runner may be in the middle of a call (waiting for a
+        # callback's answer), so no later judge gets it.
+        has_runner.stopper.stop()
     if current is not None:
         # The judge ended (or was killed) in the middle of a case: it fails, and the runner, which may
         # be in the middle of an answer, is not given to anyone else.

@@ -163,20 +163,33 @@ def worker_slot(folder):
         return
 
 
-def _processes_of_uid(uid):
-    """Live processes (not zombies, which only wait to be reaped) of uid."""
-    pids = []
+def _statuses():
+    """(pid, {field: value}) of every process, from /proc/PID/status."""
     for name in os.listdir("/proc"):
         if not name.isdigit():
             continue
         try:
             with open(f"/proc/{name}/status") as f:
-                fields = dict(line.split(":", 1) for line in f if ":" in line)
-            if uid in (int(x) for x in fields["Uid"].split()) and not fields["State"].strip().startswith(("Z", "X")):
-                pids.append(int(name))
-        except (OSError, KeyError, ValueError):
+                yield int(name), dict(line.split(":", 1) for line in f if ":" in line)
+        except (OSError, ValueError):
             pass
-    return pids
+
+
+def _real_uid(fields):
+    return int(fields["Uid"].split()[0])
+
+
+def _processes_of_uid(uid):
+    """Live processes (not zombies, which only wait to be reaped) of uid."""
+    return [pid for pid, fields in _statuses()
+            if "Uid" in fields and uid in (int(x) for x in fields["Uid"].split())
+            and not fields.get("State", "").strip().startswith(("Z", "X"))]
+
+
+def _zombies_of_uid(uid):
+    """How many processes of uid have ended but are not reaped yet."""
+    return sum(1 for _, fields in _statuses()
+               if "Uid" in fields and _real_uid(fields) == uid and fields.get("State", "").strip().startswith("Z"))
 
 
 def _processes_with_token(token):
@@ -277,18 +290,8 @@ def _remove_leftovers(uid):
 def _count_own_threads():
     """RLIMIT_NPROC counts threads, not processes, of the real user."""
     uid = os.getuid()
-    total = 0
-    for name in os.listdir("/proc"):
-        if not name.isdigit():
-            continue
-        try:
-            with open(f"/proc/{name}/status") as f:
-                fields = dict(line.split(":", 1) for line in f if ":" in line)
-            if int(fields["Uid"].split()[0]) == uid:
-                total += int(fields["Threads"])
-        except (OSError, KeyError, ValueError):
-            pass
-    return total
+    return sum(int(fields.get("Threads", 0)) for _, fields in _statuses()
+               if "Uid" in fields and _real_uid(fields) == uid)
 
 
 def read_capped(path, cap):
@@ -470,7 +473,9 @@ def run(argv, *, limits, log_path, user=None, inputs=(), scratch=None, env_extra
     elif user is None:
         nproc = _count_own_threads() + limits.processes + 8
     else:
-        nproc = limits.processes
+        # RLIMIT_NPROC counts the user's zombies too, until init reaps them (slowly on some machines):
+        # those a previous run left (killed orphans) must not take this run's processes.
+        nproc = limits.processes + _zombies_of_uid(user[0])
     cgroup = iso.cgroup.create(limits.memory_bytes, limits.processes + 8) if iso.cgroup else None
 
     def prepare_child():  # runs in the child (as root when root), just before exec
@@ -555,7 +560,7 @@ def describe_ending(outcome, limits):
         signal.SIGABRT: "aborted (abort(), a failed assert, or an exception nobody caught)",
         signal.SIGXCPU: f"used more than {limits.cpu_seconds} s of CPU time and was stopped",
         signal.SIGXFSZ: f"wrote more than {limits.file_bytes // MiB} MiB (output or files) and was stopped",
-        signal.SIGKILL: "was killed (it went past a time or memory limit: memory.max counts memfd and "
+        signal.SIGKILL: "was killed (it went past a time or memory limit; the memory limit counts memfd and "
                         "/dev/shm files too)",
         signal.SIGILL: "crashed with an illegal instruction",
     }
