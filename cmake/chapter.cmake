@@ -12,6 +12,8 @@
 #   chNN_exercises   whichever of the two this build selects (RT_SIDE, RT_STUDENT_CHAPTERS)
 #   chNN             the chapter's program, linked with chNN_exercises
 #   chNN_public_tests, chNN_hidden_tests   doctest executables from tests/public and tests/hidden
+#   chNN_public_objects, chNN_hidden_objects, chNN_program_objects   their sources and the program's
+#                    main.cpp, each compiled once (rt_chapter_objects())
 # and registers ctest tests labelled chNN (ctest -L ch01 runs chapter 01 only):
 #   chNN.public.*, chNN.hidden.*   one ctest test per doctest test case
 #   chNN.render                    renders the scene and compares it with chapters/NN-name/reference.png
@@ -47,14 +49,9 @@ endfunction()
 # checks that the hidden tests catch it.
 function(rt_wrong_fixtures id chapter_dir solution_dir exercises dependency_solution_libs)
   file(GLOB fixture_dirs LIST_DIRECTORIES true CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/tests/fixtures/wrong/${id}/*")
-  if(NOT fixture_dirs OR NOT TARGET ${id}_hidden_tests)
+  if(NOT fixture_dirs OR NOT TARGET ${id}_hidden_objects)
     return()
   endif()
-  file(GLOB hidden_sources CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/tests/hidden/${id}_*.cpp")
-  # The hidden tests are compiled once and linked against every fixture.
-  add_library(${id}_hidden_objects OBJECT ${hidden_sources})
-  target_include_directories(${id}_hidden_objects PRIVATE "$<TARGET_PROPERTY:${id}_student,INTERFACE_INCLUDE_DIRECTORIES>")
-  target_link_libraries(${id}_hidden_objects PRIVATE rt_test_support)
   file(RELATIVE_PATH solution_rel "${PROJECT_SOURCE_DIR}" "${solution_dir}")
   foreach(dir IN LISTS fixture_dirs)
     if(NOT IS_DIRECTORY "${dir}")
@@ -117,7 +114,8 @@ function(rt_wrong_fixtures id chapter_dir solution_dir exercises dependency_solu
     string(MAKE_C_IDENTIFIER "${target}" target)
     add_executable(${target} ${sources})
     target_include_directories(${target} PRIVATE "${PROJECT_SOURCE_DIR}/chapters" "${chapter_dir}" "${solution_dir}")
-    target_link_libraries(${target} PRIVATE ${id}_hidden_objects rt_test_support rt_common ${dependency_solution_libs})
+    target_link_libraries(${target} PRIVATE $<TARGET_OBJECTS:${id}_hidden_objects> rt_test_support rt_common
+                                            ${dependency_solution_libs})
     set_target_properties(${target} PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/wrong")
     add_test(NAME ${id}.wrong.${bug}
              COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:${target}> -DEXPECT_FILE=${dir}/expect_fail.txt
@@ -166,6 +164,21 @@ ${targets}  \"program\": \"$<TARGET_FILE:${id}>\",
   \"reference\": \"${reference}\"
 }
 ")
+endfunction()
+
+# A chapter's test sources (and its program's main.cpp) are compiled once,
+# into an OBJECT library, and put into every executable that runs them (as
+# $<TARGET_OBJECTS:...>, which carries no library along): the tests, the
+# untouched stubs' tests, the judges, the wrong-implementation fixtures. They
+# all compile the same sources with the same headers and flags; which code
+# answers the exercise functions (solution, stub, the judge's forwarding
+# stub, a patched copy), and which main(), is decided when each one links.
+# `support` is the library whose headers and flags they compile with
+# (rt_test_support for tests, rt_common for a program).
+function(rt_chapter_objects id target support)
+  add_library(${target} OBJECT ${ARGN})
+  target_include_directories(${target} PRIVATE "$<TARGET_PROPERTY:${id}_student,INTERFACE_INCLUDE_DIRECTORIES>")
+  target_link_libraries(${target} PRIVATE ${support})
 endfunction()
 
 function(rt_chapter number)
@@ -226,7 +239,8 @@ function(rt_chapter number)
   set_property(GLOBAL APPEND PROPERTY RT_CHAPTERS ${id})
 
   # The chapter's program.
-  add_executable(${id} "${chapter_dir}/${CH_PROGRAM}")
+  rt_chapter_objects(${id} ${id}_program_objects rt_common "${chapter_dir}/${CH_PROGRAM}")
+  add_executable(${id} $<TARGET_OBJECTS:${id}_program_objects>)
   target_link_libraries(${id} PRIVATE ${id}_exercises)
   set_target_properties(${id} PROPERTIES OUTPUT_NAME "${id}-${short_name}" RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/bin")
 
@@ -236,7 +250,8 @@ function(rt_chapter number)
     if(NOT test_sources)
       continue()
     endif()
-    add_executable(${id}_${kind}_tests ${test_sources})
+    rt_chapter_objects(${id} ${id}_${kind}_objects rt_test_support ${test_sources})
+    add_executable(${id}_${kind}_tests $<TARGET_OBJECTS:${id}_${kind}_objects>)
     target_link_libraries(${id}_${kind}_tests PRIVATE ${id}_exercises rt_test_support)
     set_target_properties(${id}_${kind}_tests PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/tests")
     # Discovery runs the freshly linked executable at build time. The
@@ -263,11 +278,10 @@ function(rt_chapter number)
   # On a solution build, check the untouched student side as well: it must
   # compile, link, and fail with "not implemented yet", never crash or hang.
   if(side STREQUAL "solutions" AND TARGET ${id}_public_tests)
-    file(GLOB public_sources CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/tests/public/${id}_*.cpp")
-    add_executable(${id}_public_tests_stub ${public_sources})
+    add_executable(${id}_public_tests_stub $<TARGET_OBJECTS:${id}_public_objects>)
     target_link_libraries(${id}_public_tests_stub PRIVATE ${id}_student rt_test_support)
     set_target_properties(${id}_public_tests_stub PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/stub")
-    add_executable(${id}_stub "${chapter_dir}/${CH_PROGRAM}")
+    add_executable(${id}_stub $<TARGET_OBJECTS:${id}_program_objects>)
     target_link_libraries(${id}_stub PRIVATE ${id}_student)
     set_target_properties(${id}_stub PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/stub")
 

@@ -83,7 +83,7 @@ function(rt_chapter_judge id chapter_dir depends dependency_libs)
       continue()
     endif()
     set(target ${id}_${kind}_judge)
-    add_executable(${target} ${test_sources})
+    add_executable(${target} $<TARGET_OBJECTS:${id}_${kind}_objects>)  # compiled once, shared with the tests
     target_include_directories(${target} PRIVATE "$<TARGET_PROPERTY:${id}_student,INTERFACE_INCLUDE_DIRECTORIES>")
     target_link_libraries(${target} PRIVATE rt_judge_main_${kind} ${id}_judge_table ${judge_dependencies} rt_rpc_judge
                                             doctest::doctest rt_common)
