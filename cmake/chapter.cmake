@@ -45,6 +45,12 @@ function(rt_chapter_side number out_side)
   set(${out_side} "${side}" PARENT_SCOPE)
 endfunction()
 
+# The OBJECT library of one solution file, e.g. ch08_solution_slab_test_cpp.
+function(rt_solution_file_objects id file out_target)
+  string(MAKE_C_IDENTIFIER "${id}_solution_${file}" target)
+  set(${out_target} ${target} PARENT_SCOPE)
+endfunction()
+
 # Links the hidden tests of chapter `id` against a wrong implementation and
 # checks that the hidden tests catch it.
 function(rt_wrong_fixtures id chapter_dir solution_dir exercises dependency_solution_libs)
@@ -73,7 +79,7 @@ function(rt_wrong_fixtures id chapter_dir solution_dir exercises dependency_solu
       continue()
     endif()
     # The patched copies live in the build folder; the exercise files the
-    # patch does not touch are compiled from solutions/ as they are.
+    # patch does not touch are the solution's objects, as they are.
     set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${dir}/bug.patch")
     file(STRINGS "${dir}/bug.patch" patched_lines REGEX "^\\+\\+\\+ b/")
     set(out "${PROJECT_BINARY_DIR}/wrong_src/${id}/${bug}")
@@ -88,7 +94,8 @@ function(rt_wrong_fixtures id chapter_dir solution_dir exercises dependency_solu
         list(APPEND patched_outputs "${out}/${rel}")
         list(APPEND sources "${out}/${rel}")
       else()
-        list(APPEND sources "${solution_dir}/${f}")
+        rt_solution_file_objects(${id} "${f}" objects)
+        list(APPEND sources $<TARGET_OBJECTS:${objects}>)
       endif()
     endforeach()
     set(status "${out}/patch-status.txt")
@@ -221,12 +228,18 @@ function(rt_chapter number)
   target_link_libraries(${id}_student PUBLIC rt_common ${dependency_libs})
 
   if(EXISTS "${solution_dir}")
-    set(solution_sources "")
+    # One OBJECT library per solution file: a wrong-implementation fixture
+    # patches one file and links the others' objects as they are.
+    set(solution_objects "")
     foreach(f IN LISTS CH_EXERCISES)
-      list(APPEND solution_sources "${solution_dir}/${f}")
+      rt_solution_file_objects(${id} "${f}" objects)
+      add_library(${objects} OBJECT "${solution_dir}/${f}")
+      target_include_directories(${objects} PRIVATE "${PROJECT_SOURCE_DIR}/chapters" "${chapter_dir}")
+      target_link_libraries(${objects} PRIVATE rt_common ${dependency_libs})
+      list(APPEND solution_objects $<TARGET_OBJECTS:${objects}>)
     endforeach()
-    add_library(${id}_solution STATIC ${solution_sources})
-    target_include_directories(${id}_solution PUBLIC "${PROJECT_SOURCE_DIR}/chapters" PRIVATE "${chapter_dir}")
+    add_library(${id}_solution STATIC ${solution_objects})
+    target_include_directories(${id}_solution PUBLIC "${PROJECT_SOURCE_DIR}/chapters")
     target_link_libraries(${id}_solution PUBLIC rt_common ${dependency_libs})
   endif()
 
