@@ -132,7 +132,7 @@ class SandboxFixture(ToolTest):
         fallback = label != isolation.NAMESPACES
         out = os.path.join(config.work, "out", name, label, "results.json")
         graded = grade(sub, out, spec["chapters"], config.build_dir,
-                       HANG_LIMITS if name in HANGING_RENDER else LIMITS, env, timeout=400)
+                       (HANG_LIMITS if name in HANGING_RENDER else LIMITS) + spec.get("options", []), env, timeout=400)
         print(f"{name} [{label}]: graded in {graded.seconds:.1f} s")
         data = self.assertGraded(graded)
         self.assertEqual("FALLBACK" in graded.stderr, fallback, "the grader did not say its mode")
@@ -151,7 +151,10 @@ class SandboxFixture(ToolTest):
             ([] if fallback else spec.get("forbidden_in_results_namespaces", []))
         for word in forbidden:
             self.assertFalse(word in text, f"'{word}' appears in results.json")
-        for pattern, words in spec.get("output_contains", {}).items():
+        expected_words = dict(spec.get("output_contains", {}))
+        if "memory limit per run: cgroup" in data["output"]:   # a memory cgroup, v1 or v2, held the run
+            expected_words.update(spec.get("output_contains_with_memory_cgroup", {}))
+        for pattern, words in expected_words.items():
             chosen = [t for t in data["tests"] if matches(t["name"], [pattern])]
             self.assertTrue(chosen, f"no test matches {pattern}")
             for t in chosen:
@@ -270,10 +273,16 @@ class Imgcmp(ToolTest):
                 self.assertIn(words, said)
 
 
+UNPRIVILEGED_USER = "rt-grader-unpriv"
+
+
 class PrivateClone(ToolTest):
     def test_a_clone_in_a_private_folder_grades_in_both_modes(self):
         """The repository copied into a 0700 folder (like root's home) grades a
-        correct chapter 01 fully, with namespaces and in the fallback."""
+        correct chapter 01 fully, with namespaces and in the fallback; then, as
+        root, the clone is given to an ordinary user, who grades in it again: with
+        unprivileged bubblewrap (namespaces mode) where the kernel allows it, else
+        with the loud fallback."""
         private = os.path.join(config.work, "private")
         shutil.rmtree(private, ignore_errors=True)
         os.makedirs(private)
@@ -290,6 +299,35 @@ class PrivateClone(ToolTest):
                                grade_cmd=os.path.join(clone, "tools", "grader", "grade"))
                 print(f"private clone [{label}]: {graded.seconds:.1f} s")
                 self.assertFullMarks(self.assertGraded(graded), f"private clone [{label}]")
+        if ROOT and shutil.which("runuser") and os.path.exists("/usr/bin/python3"):
+            with self.subTest(mode="not root"):
+                self.check_not_root(private, clone, sub)
+
+    def check_not_root(self, private, clone, sub):
+        """The clone, its grading tree (prepared above) and the submission given to an ordinary
+        user, who grades there: no cgroup, no sandbox user, the code runs as that user."""
+        try:
+            subprocess.run(["id", UNPRIVILEGED_USER], check=True, capture_output=True)
+        except subprocess.CalledProcessError:
+            subprocess.run(["useradd", "--system", "--no-create-home", "--shell", "/usr/sbin/nologin",
+                            UNPRIVILEGED_USER], check=True, capture_output=True)
+        out_dir = os.path.join(private, "out")
+        os.makedirs(out_dir, exist_ok=True)
+        for folder in (private, sub):
+            subprocess.run(["chown", "-R", UNPRIVILEGED_USER, folder], check=True)
+        bwrap_works = subprocess.run(["runuser", "-u", UNPRIVILEGED_USER, "--", "bwrap", "--unshare-user",
+                                      "--ro-bind", "/", "/", "/bin/true"], capture_output=True).returncode == 0
+        graded = grade(sub, os.path.join(out_dir, "results.json"), "01", None, LIMITS, timeout=900,
+                       grade_cmd=os.path.join(clone, "tools", "grader", "grade"), as_user=UNPRIVILEGED_USER)
+        print(f"private clone [not root, bwrap {'works' if bwrap_works else 'fails'}]: {graded.seconds:.1f} s")
+        data = self.assertGraded(graded)
+        self.assertFullMarks(data, "private clone [not root]")
+        if bwrap_works:
+            self.assertIn("isolation: namespaces", graded.stderr, "unprivileged bubblewrap was not used")
+            self.assertIn("inside a user namespace of unprivileged bubblewrap", data["output"])
+        else:
+            self.assertIn("FALLBACK", graded.stderr, "the fallback was not said")
+            self.assertIn("WITHOUT the namespace sandbox", data["output"])
 
 
 if __name__ == "__main__":
