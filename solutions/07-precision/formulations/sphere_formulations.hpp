@@ -405,47 +405,87 @@ inline double c_near_surface(const vec3<float>& o, const sphere<float>& s, const
 }
 
 // Float inputs, double arithmetic: a product of two floats is exact in
-// double and a difference of two floats almost always is, so f, f x d and
-// c lose (almost) nothing; the roots are rounded to float once, at the end.
-// Two quantities can still cancel beyond double's reserve: c (an origin on or
-// near the surface: shadow and reflection rays, or 1e-3 above a sphere of
-// radius 1e7) and the discriminant of a grazing ray. Only those rays take a
-// slower path, so the common case costs little more than the plain float form.
-// Always inlined: GCC would otherwise call it, and the call costs as much as
-// a third of the plain float test.
+// double and a difference of two floats almost always is, so f, h = f.d and
+// c = f.f - r^2 lose (almost) nothing; the roots are rounded to float once,
+// at the end.
+//
+// The discriminant is h^2 - a c. It cancels only when a c is close to h^2
+// (a far sphere, a grazing ray); then it is computed as a r^2 - |f x d|^2
+// instead. Whenever c < 0 (the origin inside: a sum of two
+// positive terms) or 2 a c <= h^2 (the discriminant at least half of h^2),
+// nothing cancels and h^2 - a c is as good as c: that is the case of rays
+// that start on or near a surface and leave or enter it (shadow,
+// reflection and refraction rays), of rays from inside, and of steep rays to
+// a close ground. Rays that leave a sphere from outside (c > 0, h >= 0) have
+// both roots at or behind the origin: a miss for a range that starts at 0 or
+// later, decided from the signs of c and h alone, with no square root.
+//
+// Two quantities can cancel beyond double's reserve: c (an origin on or near
+// the surface, or 1e-3 above a sphere of radius 1e7: c_near_surface) and
+// the discriminant of a grazing ray (sphere_grazing). Only those rays take a
+// slower path, so the common case costs little more than the plain float
+// form. Always inlined: GCC would otherwise call it, and the call costs as
+// much as a third of the plain float test.
 [[gnu::always_inline]] inline std::optional<float> sphere_in_double(const ray<float>& ray_, const sphere<float>& s,
-                                             const interval<float>& range) {
-    // No separate validity test (ten comparisons on every ray): NaN and
-    // infinity in any input make the discriminant, c or a root NaN or
-    // infinite, and the tests below and near_root_first reject those.
+                                                                    const interval<float>& range) {
     if (!(s.radius > 0)) return std::nullopt;
     const vec3<double> d = convert<double>(ray_.direction);
     const vec3<double> f = convert<double>(ray_.origin) - convert<double>(s.center);
-    const double r = s.radius, r2 = r * r;  // r2 exact: a float squared
-    const double a = dot(d, d);
+    const double r2 = double(s.radius) * s.radius;  // exact: a float squared
+    const double a = dot(d, d), h = dot(f, d), ff = dot(f, f);
+    // No test of every input (ten comparisons on every ray): NaN and
+    // infinity make c, h or the discriminant NaN or infinite, and the tests
+    // below and near_root_first reject those; off the common path they are
+    // rejected explicitly.
     if (!(a > 0)) return std::nullopt;
-    const double h = dot(f, d);
-    const vec3<double> g = cross(f, d);
-    const double ar2 = a * r2, disc = ar2 - dot(g, g);
-    if (!(disc >= ar2 * 0x1p-26)) {  // one test on the common path
-        // A miss by more than the discriminant's rounding error (a few
-        // 2^-53 of a r^2, far less than the margin used here), or NaN.
-        if (!(disc >= -ar2 * 0x1p-40)) return std::nullopt;
-        return sphere_grazing(ray_, s, range, f, h);
+    const double c0 = ff - r2;
+    double c = c0;
+    const bool ahead_only = range.min >= 0;
+    bool by_cross = true;
+    if (c0 >= 0x1p-22 * ff) {
+        // Outside, clearly (the common case: the path of the plain form plus
+        // one test). Leaving (h >= 0): the roots c/q and q/a are both <= 0.
+        // Should the exact h be < 0 while the computed one is >= 0, |h| is
+        // below h's rounding error (2^-50 |f| |d|) and the exact discriminant
+        // h^2 - a c < 2^-100 a f.f - 2^-23 a f.f is negative: a miss all the same.
+        if (h >= 0 && ahead_only) return std::nullopt;
+    } else {
+        // NaN or infinity in d, o or C (c0 is NaN, or d is infinite): no
+        // further work. a and f.f of float inputs cannot overflow in double.
+        if (!(a + ff < infinity<double>)) return std::nullopt;
+        // Inside, clearly (h^2 - a c is a sum of two positive terms), or within
+        // about 2^-22 |f| of the surface, leaving or entering, not near
+        // tangency: a |c| <= h^2 / 4, so h^2 - a c does not cancel, and h is
+        // within 2^-40 of itself. Only c needs care: c0 is off by at most about
+        // 6 * 2^-53 f.f (f = o - C by 2^-53 of each component, each square and
+        // sum by 2^-53 of its size), below 2^-23.4 of c (at most 1 ULP of the
+        // float t) when |c0| >= 2^-27 f.f. Only origins within about 2^-27 |f|
+        // of the surface need c_near_surface, which returns c within 2^-25 of
+        // itself or, when its sign puts the root c/q behind the range (q has
+        // the sign of -h), a c of certain sign.
+        by_cross = !(c0 <= -0x1p-22 * ff || h * h >= 0x1p-20 * a * ff);
+        if (!(std::fabs(c) >= 0x1p-27 * ff))
+            c = c_near_surface(ray_.origin, s, f, ahead_only ? (h >= 0 ? 1.0 : -1.0) : 0.0);
+        if (!by_cross && c >= 0 && h >= 0 && ahead_only) return std::nullopt;  // leaving from outside (or from t = 0)
     }
-    // c = f.f - r^2 plainly. f = o - C is off by at most 2^-53 of each
-    // component and each square and sum by 2^-53 of its size, so c is off by
-    // at most about 6 * 2^-53 f.f. When |c| is at least 2^-27 of f.f that is
-    // below 2^-23.4 of c (at most 1 ULP of the float t), and c is used as it
-    // is: every ray that does not start within about 2^-27 |f| of the surface.
-    const double ff = dot(f, f);
-    double c = ff - r2;
-    if (!(std::fabs(c) >= 0x1p-27 * ff)) {
-        // q has the sign of -h, so for h >= 0 a c > 0 makes the root c/q
-        // negative, and for h < 0 a c < 0 does; a range that starts at 0 or
-        // later never holds it.
-        const double out_of_range_sign = range.min >= 0 ? (h >= 0 ? 1.0 : -1.0) : 0.0;
-        c = c_near_surface(ray_.origin, s, f, out_of_range_sign);
+    double disc = 0;
+    if (by_cross) {
+        // a c may be close to h^2 (a far sphere, a ray near tangency): the
+        // discriminant as a r^2 - |f x d|^2 (Lagrange's identity), which
+        // keeps its digits there.
+        const vec3<double> g = cross(f, d);
+        const double ar2 = a * r2;
+        disc = ar2 - dot(g, g);
+        if (!(disc >= ar2 * 0x1p-26)) {  // one test on the common path
+            // A miss by more than the discriminant's rounding error (a few
+            // 2^-53 of a r^2, far less than the margin used here), or NaN.
+            if (!(disc >= -ar2 * 0x1p-40)) return std::nullopt;
+            return sphere_grazing(ray_, s, range, f, h);
+        }
+    } else {
+        // c < 0, or a |c| <= h^2 / 4: nothing cancels, and a c of certain sign
+        // only (c < 0 with h < 0 here) is tiny next to h^2.
+        disc = h * h - a * c;
     }
     return near_root_first(a, h, c, disc, range);
 }
