@@ -21,7 +21,7 @@ import subprocess
 import sys
 import time
 
-from tooltest import FIXTURES, GRADE, REPO, ROOT, ToolTest, config, grade, main, make_submission, solution_folder
+from tooltest import FIXTURES, add_fixture_tests, GRADE, REPO, ROOT, ToolTest, config, grade, main, make_submission, solution_folder
 
 PREPARE_TIME_LIMIT = 850          # seconds: the first build of the grading tree (ctest gives 900)
 # A correct test case ends in milliseconds, but on a machine shared with builds (load 20-40) the
@@ -87,10 +87,6 @@ class Baseline(ToolTest):
                 self.assertNotIn("values:", t["output"], "a hidden test shows the values it compared")
 
 
-def fixture_names():
-    return sorted(os.path.basename(os.path.dirname(p)) for p in glob.glob(os.path.join(FIXTURES, "*", "expect.json")))
-
-
 class Adversarial(ToolTest):
     """One test per tests/fixtures/adversarial/NAME/ with an expect.json (test_NAME, '-' read as '_'):
     the submission is graded and checked against its expect.json (see the README there)."""
@@ -132,11 +128,7 @@ class Adversarial(ToolTest):
                             "the public feedback should still show the exception's own message")
 
 
-for _name in fixture_names():
-    def _test(self, name=_name):
-        self.check_fixture(name)
-    _test.__doc__ = f"tests/fixtures/adversarial/{_name}"
-    setattr(Adversarial, "test_" + _name.replace("-", "_"), _test)
+add_fixture_tests(Adversarial, "*/expect.json")
 
 
 class Batch(ToolTest):

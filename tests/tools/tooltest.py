@@ -120,6 +120,19 @@ def matches(name, patterns):
     return any(fnmatch.fnmatchcase(name, p) for p in patterns)
 
 
+def add_fixture_tests(cls, marker):
+    """One test method per fixture folder FIXTURES/NAME/ that matches `marker`
+    (a glob such as "*/expect.json"): test_NAME ('-' read as '_') calls
+    cls.check_fixture(NAME), so each fixture is its own ctest entry."""
+    for path in sorted(glob.glob(os.path.join(FIXTURES, marker))):
+        name = os.path.basename(os.path.dirname(path))
+
+        def test(self, name=name):
+            self.check_fixture(name)
+        test.__doc__ = f"tests/fixtures/adversarial/{name}"
+        setattr(cls, "test_" + name.replace("-", "_"), test)
+
+
 class ToolTest(unittest.TestCase):
     maxDiff = 4000
 
