@@ -438,6 +438,19 @@ inline T sphere_t(T fx, T fy, T fz, T c, T rr, T dx, T dy, T dz, T a, T inv_a, T
 }
 
 
+// One ray against the scene's triangle j, by the brute-force kernel: the
+// per-lane work of every triangle loop below (brute force, the tree's leaves
+// and the shadow test), written once so they stay the same to the bit.
+template <class T>
+[[gnu::always_inline]] inline T triangle_lane_t(const soa_scene<T>& s, size_t j, T ox, T oy, T oz, T dx, T dy, T dz,
+                                                T d_max, T tmin, int& unsure) {
+    const T sx = ox - s.ax[j], sy = oy - s.ay[j], sz = oz - s.az[j];
+    const T qx = sy * s.e1z[j] - sz * s.e1y[j], qy = sz * s.e1x[j] - sx * s.e1z[j], qz = sx * s.e1y[j] - sy * s.e1x[j];
+    const T flat_bound = flat_scale(s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j], s.e2z[j]) * d_max + flat_tiny<T>();
+    return triangle_t(sx, sy, sz, qx, qy, qz, s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j], s.e2z[j], dx, dy, dz,
+                      tmin, flat_bound, unsure);
+}
+
 // One ray against the triangles [g, g + leaf_lanes) of a tree's leaf that
 // ends at e (lanes from e on, other leaves' triangles or padding, give
 // infinity): t[i] for triangle g + i, by the brute-force kernel in
@@ -451,13 +464,7 @@ struct triangle_group {
         int unsure = 0;
         for (int i = 0; i < leaf_lanes; ++i) {
             const size_t j = g + size_t(i);
-            const T sx = ox - s.ax[j], sy = oy - s.ay[j], sz = oz - s.az[j];
-            const T qx = sy * s.e1z[j] - sz * s.e1y[j], qy = sz * s.e1x[j] - sx * s.e1z[j],
-                    qz = sx * s.e1y[j] - sy * s.e1x[j];
-            const T flat_bound =
-                flat_scale(s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j], s.e2z[j]) * d_max + flat_tiny<T>();
-            const T x = triangle_t(sx, sy, sz, qx, qy, qz, s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j], s.e2z[j],
-                                   dx, dy, dz, tmin, flat_bound, unsure);
+            const T x = triangle_lane_t(s, j, ox, oy, oz, dx, dy, dz, d_max, tmin, unsure);
             t[i] = j < e ? x : infinity<T>;
         }
         if (!unsure) return;
@@ -713,13 +720,7 @@ bool any_hit(const soa_scene<T>& s, const ray<T>& r, T tmin, T tmax) {
             int blocked = 0, unsure = 0;
             for (int k = 0; k < G; ++k) {
                 const size_t j = i + size_t(k);
-                const T sx = ox - s.ax[j], sy = oy - s.ay[j], sz = oz - s.az[j];
-                const T qx = sy * s.e1z[j] - sz * s.e1y[j], qy = sz * s.e1x[j] - sx * s.e1z[j],
-                        qz = sx * s.e1y[j] - sy * s.e1x[j];
-                const T flat_bound =
-                    flat_scale(s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j], s.e2z[j]) * d_max + flat_tiny<T>();
-                blocked |= int(triangle_t(sx, sy, sz, qx, qy, qz, s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j],
-                                          s.e2z[j], dx, dy, dz, tmin, flat_bound, unsure) < tmax);
+                blocked |= int(triangle_lane_t(s, j, ox, oy, oz, dx, dy, dz, d_max, tmin, unsure) < tmax);
             }
             if (unsure && !blocked)  // nearly parallel or degenerate: decide exactly
                 for (size_t j = i; j < i + G; ++j) {
