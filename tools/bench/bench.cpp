@@ -128,7 +128,9 @@ struct render_figures {
 render_figures time_fast(const scene_description& d, int size) {
     const scene_plan plan = make_plan(d, 1e-3, std::nullopt);
     render_figures f;
-    f.seconds = best_seconds([&] { render_fast(d, plan, size, size, f.rays); }, runs);
+    render_stats stats;
+    f.seconds = best_seconds([&] { render_fast(d, plan, size, size, stats); }, runs);
+    f.rays = stats.rays;
     return f;
 }
 
@@ -136,7 +138,9 @@ render_figures time_general(const scene_description& d, int size, int repeat) {
     scene_plan plan = make_plan(d, 1e-3, precision::double_);
     plan.general = true;
     render_figures f;
-    f.seconds = best_seconds([&] { render_general(d, plan, size, size, f.rays); }, repeat);
+    render_stats stats;
+    f.seconds = best_seconds([&] { render_general(d, plan, size, size, stats); }, repeat);
+    f.rays = stats.rays;
     return f;
 }
 
@@ -475,8 +479,9 @@ void big_scenes(int size, bool flake) {
     std::printf("   %s\n", plan.describe().c_str());
     tree_figures tf;
     const double build = best_seconds([&] { tf = build_trees_only(d); }, 1);
-    long rays = 0;
-    const double total = best_seconds([&] { render_fast(d, plan, fsize, fsize, rays); }, 1);
+    render_stats stats;
+    const double total = best_seconds([&] { render_fast(d, plan, fsize, fsize, stats); }, 1);
+    const long rays = stats.rays;
     std::printf("   ours: tree build %.2f s (CPU per thread; %.1f MB, depth %zu), render with shading and shadows %.2f s, "
                 "%ld rays, %.2f Mrays/s; peak memory so far %.2f GB\n",
                 build, double(tf.bytes) / 1e6, tf.depth, total - build, rays, double(rays) / (total - build) / 1e6,

@@ -30,6 +30,7 @@
 #include "bvh_build.hpp"
 #include "look.hpp"
 
+#include "common/timing.hpp"
 #include "common/scene.hpp"   // material_at: the checker pattern
 #include "06-shading/shading.hpp"   // chapter 06's shade(), for lit scenes
 
@@ -821,8 +822,10 @@ struct context {
 };
 
 template <class T, sphere_mode SM, bool Planes, bool Tris, bool Lights>
-image render_with(const scene_description& d, int width, int height, bool tree, long& rays) {
+image render_with(const scene_description& d, int width, int height, bool tree, render_stats& stats) {
+    const stopwatch setup;
     const context<T> ctx(d, width, height, tree);
+    stats.setup_seconds = setup.seconds();
     if (tree) std::fprintf(stderr, "%s\n", ctx.describe_trees().c_str());  // stderr: outside rt-bench's tables
     image img(width, height);
     std::atomic<long> shadow_rays{0};
@@ -861,7 +864,7 @@ image render_with(const scene_description& d, int width, int height, bool tree, 
         }
         shadow_rays += shadows;
     });
-    rays = long(width) * long(height) + shadow_rays.load();
+    stats.rays = long(width) * long(height) + shadow_rays.load();
     return img;
 }
 
@@ -939,13 +942,13 @@ sphere_mode mode_of(const scene_plan& plan) {
 
 }  // namespace
 
-image render_fast(const scene_description& d, const scene_plan& plan, int width, int height, long& rays) {
+image render_fast(const scene_description& d, const scene_plan& plan, int width, int height, render_stats& stats) {
     auto run = [&](auto type) {
         using T = decltype(type);
         return dispatch(mode_of(plan), plan.planes > 0, plan.triangles > 0, plan.lights > 0,
                         [&](auto SM, auto P, auto Tr, auto L) {
                             return render_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value,
-                                               decltype(L)::value>(d, width, height, plan.tree, rays);
+                                               decltype(L)::value>(d, width, height, plan.tree, stats);
                         });
     };
     return plan.prec == precision::single ? run(float{}) : run(double{});

@@ -19,9 +19,10 @@
 namespace rt::render_tool {
 
 // Renders with the plan's precision and formulation, leaving out the loops
-// the plan leaves out. rays counts primary and shadow rays. Shading of
-// lit scenes uses chapter 06's shade().
-image render_fast(const scene_description& scene, const scene_plan& plan, int width, int height, long& rays);
+// the plan leaves out. Shading of lit scenes uses chapter 06's shade().
+// stats (scene_plan.hpp) receives the rays traced and the time spent on
+// setup (the scene's arrays and trees) before the first ray.
+image render_fast(const scene_description& scene, const scene_plan& plan, int width, int height, render_stats& stats);
 
 // The primary hit of every pixel, for measuring error: object number
 // (spheres, then planes, then triangles; -1 for a miss) and t.

@@ -17,7 +17,7 @@ namespace rt::render_tool {
 // One copy's entry points, declared in its namespace (isa_baseline, ...).
 #define RT_DECLARE_FAST_PATH(ns)                                                                               \
     namespace ns {                                                                                             \
-    image render_fast(const scene_description&, const scene_plan&, int, int, long&);                           \
+    image render_fast(const scene_description&, const scene_plan&, int, int, render_stats&);                           \
     primary_hits trace_primary(const scene_description&, const scene_plan&, int, int);                        \
     primary_hits trace_primary_reference(const scene_description&, int, int);                                 \
     long count_primary_hits(const scene_description&, const scene_plan&, int, int, int);                      \
@@ -102,8 +102,8 @@ const fast_path_copy& chosen() {
 
 const char* fast_path_isa() { return name_of(chosen().set); }
 
-image render_fast(const scene_description& d, const scene_plan& plan, int width, int height, long& rays) {
-    return chosen().render_fast(d, plan, width, height, rays);
+image render_fast(const scene_description& d, const scene_plan& plan, int width, int height, render_stats& stats) {
+    return chosen().render_fast(d, plan, width, height, stats);
 }
 primary_hits trace_primary(const scene_description& d, const scene_plan& plan, int width, int height) {
     return chosen().trace_primary(d, plan, width, height);

@@ -9,6 +9,7 @@
 #include "02-sphere/sphere.hpp"
 #include "05-triangle/triangle.hpp"
 
+#include "common/timing.hpp"
 #include "common/object_dispatch.hpp"
 #include "common/render.hpp"
 
@@ -19,7 +20,8 @@ namespace rt::render_tool {
 namespace {
 
 template <class T>
-image render_typed(const scene_description& d, bool use_tree, int width, int height, long& rays) {
+image render_typed(const scene_description& d, bool use_tree, int width, int height, render_stats& stats) {
+    const stopwatch setup;
     const scene<T> world = convert_scene<T>(d.world);
     const scene_camera<T> camera(d.camera, width, height);
 
@@ -30,6 +32,7 @@ image render_typed(const scene_description& d, bool use_tree, int width, int hei
     // specialised path's); an empty tree otherwise, never asked.
     const ch08::scene_tree<T> tree = use_tree ? ch08::build_scene_tree(world) : ch08::scene_tree<T>{};
     const ch08::leaf_intersector<T> leaf = ch08::leaf_test(tree, dispatch);
+    stats.setup_seconds = setup.seconds();
     auto closest = [&](const ray<T>& r, const interval<T>& range) {
         return use_tree ? ch08::scene_closest_hit(tree, leaf, dispatch, r, range)
                         : ch03::closest_hit(world.object_count(), intersect, r, range);
@@ -48,15 +51,15 @@ image render_typed(const scene_description& d, bool use_tree, int width, int hei
         if (world.lights.empty()) return unlit_colour(m, hit->normal, r.direction);
         return ch06::shade(hit->point, hit->normal, -r.direction, m, world.lights, world.ambient, occluded);
     });
-    rays = long(width) * long(height) + shadow_rays.load();
+    stats.rays = long(width) * long(height) + shadow_rays.load();
     return img;
 }
 
 }  // namespace
 
-image render_general(const scene_description& scene, const scene_plan& plan, int width, int height, long& rays) {
-    return plan.prec == precision::single ? render_typed<float>(scene, plan.tree, width, height, rays)
-                                          : render_typed<double>(scene, plan.tree, width, height, rays);
+image render_general(const scene_description& scene, const scene_plan& plan, int width, int height, render_stats& stats) {
+    return plan.prec == precision::single ? render_typed<float>(scene, plan.tree, width, height, stats)
+                                          : render_typed<double>(scene, plan.tree, width, height, stats);
 }
 
 }  // namespace rt::render_tool

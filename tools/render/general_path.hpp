@@ -21,6 +21,6 @@ namespace rt::render_tool {
 
 // In plan.prec; through chapter 08's tree when plan.tree says a tree pays,
 // else through chapter 03's loop. rays counts primary and shadow rays.
-image render_general(const scene_description& scene, const scene_plan& plan, int width, int height, long& rays);
+image render_general(const scene_description& scene, const scene_plan& plan, int width, int height, render_stats& stats);
 
 }  // namespace rt::render_tool

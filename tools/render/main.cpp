@@ -114,18 +114,20 @@ int main(int argc, char** argv) {
         std::printf("%s\n", plan.describe().c_str());
         std::fflush(stdout);
 
-        long rays = 0;
+        render_stats stats;
         stopwatch sw;
-        image img = general ? render_general(scene, plan, w, h, rays) : render_fast(scene, plan, w, h, rays);
+        image img = general ? render_general(scene, plan, w, h, stats) : render_fast(scene, plan, w, h, stats);
         const double seconds = sw.seconds();
+        const double tracing = seconds - stats.setup_seconds;  // rays per second leave the tree's build out
 
         std::filesystem::path path(out);
         if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
         write_png(img, out);
-        std::printf("rendered %s: %dx%d, %s path%s%s, %.1f ms, %ld rays (%ld primary), %.1f Mrays/s -> %s\n",
+        std::printf("rendered %s: %dx%d, %s path%s%s, %.1f ms (setup %.1f ms, tracing and shading %.1f ms), %ld rays "
+                    "(%ld primary), %.2f Mrays/s while tracing -> %s\n",
                     scene_path.c_str(), w, h, general ? "general" : "specialised", general ? "" : " on ",
-                    general ? "" : fast_path_isa(), seconds * 1e3, rays, long(w) * long(h),
-                    double(rays) / seconds / 1e6, out.c_str());
+                    general ? "" : fast_path_isa(), seconds * 1e3, stats.setup_seconds * 1e3, tracing * 1e3,
+                    stats.rays, long(w) * long(h), double(stats.rays) / tracing / 1e6, out.c_str());
         if (error) report_error(scene, plan, w, h);
         return 0;
     } catch (const scene_error& e) {

@@ -57,6 +57,14 @@ struct scene_plan {
     std::string describe() const;
 };
 
+// What a render did besides its picture: the rays it traced (primary and
+// shadow) and the time spent on setup (the scene's arrays and trees) before
+// the first ray, so that rays per second can leave the setup out.
+struct render_stats {
+    long rays = 0;
+    double setup_seconds = 0;
+};
+
 // Estimated hit-point error, in object sizes, of a formulation in a precision
 // for a scene of the given conditioning (see scene_plan.cpp for the model).
 double estimated_error(precision p, sphere_formulation f, double conditioning, bool has_spheres, bool has_triangles);
