@@ -21,7 +21,9 @@ import subprocess
 import sys
 import time
 
-from tooltest import FIXTURES, add_fixture_tests, GRADE, REPO, ROOT, ToolTest, config, grade, main, make_submission, solution_folder
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools", "grader"))
+sys.dont_write_bytecode = True
+from tooltest import FIXTURES, add_fixture_tests, fixture_files, fixture_source, GRADE, REPO, ROOT, ToolTest, config, grade, main, make_submission, solution_folder
 
 PREPARE_TIME_LIMIT = 850          # seconds: the first build of the grading tree (ctest gives 900)
 # A correct test case ends in milliseconds, but on a machine shared with builds (load 20-40) the
@@ -95,9 +97,10 @@ class Adversarial(ToolTest):
         folder = os.path.join(FIXTURES, name)
         with open(os.path.join(folder, "expect.json")) as f:
             expect = json.load(f)
-        sources = [p for p in glob.glob(os.path.join(folder, "*")) if not p.endswith("expect.json")]
-        sub = make_submission(os.path.join(config.work, "fixtures", name), sources=sources,
-                              solutions=expect.get("add_solutions", []))
+        source = fixture_source(name)
+        sub = make_submission(os.path.join(config.work, "fixtures", name), sources=fixture_files(name),
+                              solutions=expect.get("add_solutions", []),
+                              files={"unit_sphere.cpp": source} if source is not None else {})
         out = os.path.join(config.work, "fixtures-results", name, "results.json")
         graded = grade(sub, out, expect["chapters"], config.build_dir, HANG_LIMITS if name in HANGING else TEST_LIMITS)
         data = self.assertGraded(graded)
@@ -131,12 +134,55 @@ class Adversarial(ToolTest):
 add_fixture_tests(Adversarial, "*/expect.json")
 
 
+class InstructorNote(ToolTest):
+    """The "words to look at" note (grading.suspicious_words) matches identifiers whole: the
+    chapter 08 solutions' widen_exit is no _exit, and the solutions are not flagged for it."""
+
+    def test_identifiers_match_whole(self):
+        from rtgrader import grading
+        self.assertEqual(grading.suspicious_words("return entry <= widen_exit(exit) ? t : u;"), [])
+        self.assertEqual(grading.suspicious_words("if (x) _exit(0); if (y) std::_Exit(1);"), ["_exit", "_Exit"])
+        self.assertEqual(grading.suspicious_words("pid_t p = vfork(); // forking"), ["vfork"])
+        self.assertEqual(grading.suspicious_words('#include "/dev/zero"\nsystem("ls");'),
+                         ["system(", '#include "/'])
+
+    def test_no_solution_is_flagged_for_part_of_a_name(self):
+        from rtgrader import grading
+        for path in sorted(glob.glob(os.path.join(REPO, "solutions", "*", "*.cpp"))):
+            with open(path) as f:
+                words = grading.suspicious_words(f.read())
+            with self.subTest(solution=os.path.relpath(path, REPO)):
+                self.assertNotIn("_exit", words)
+                self.assertNotIn("asm", words)
+
+
+class ProgramOutput(ToolTest):
+    """A chapter program that links earlier chapters from the solutions (grading with the
+    solutions) holds the course's own code: its output, which the student's code writes, is not
+    shown (it could print that code's bytes); a chapter that builds on nothing shows it."""
+
+    def said(self, depends, has_solutions):
+        from types import SimpleNamespace
+        from rtgrader import grading
+        grader = grading.Grader.__new__(grading.Grader)
+        grader.tree = SimpleNamespace(has_solutions=has_solutions)
+        return grader._program_said({"depends": depends}, "SOLUTION-BYTES 554889e5\n")
+
+    def test_output_hidden_when_the_program_holds_solutions(self):
+        self.assertNotIn("SOLUTION-BYTES", self.said(["02", "03"], True))
+        self.assertIn("not shown", self.said(["02", "03"], True))
+
+    def test_output_shown_otherwise(self):
+        self.assertIn("SOLUTION-BYTES", self.said([], True))
+        self.assertIn("SOLUTION-BYTES", self.said(["02", "03"], False))     # a kit: the student's own code
+
+
 class Batch(ToolTest):
     def test_batch_grades_each_submission_and_writes_the_scores(self):
         folder = os.path.join(config.work, "batch-in")
         shutil.rmtree(folder, ignore_errors=True)
         make_submission(os.path.join(folder, "alice"), solutions=["01"])
-        make_submission(os.path.join(folder, "bob"), sources=[os.path.join(FIXTURES, "segfault", "unit_sphere.cpp")])
+        make_submission(os.path.join(folder, "bob"), files={"unit_sphere.cpp": fixture_source("segfault")})
         make_submission(os.path.join(folder, "carol"))
         out = os.path.join(config.work, "batch-out")
         shutil.rmtree(out, ignore_errors=True)

@@ -24,7 +24,8 @@ import sys
 import time
 import zlib
 
-from tooltest import FIXTURES, add_fixture_tests, REPO, ROOT, ToolTest, compiler_cache, config, grade, main, matches, solution_folder
+import tooltest
+from tooltest import FIXTURES, add_fixture_tests, fixture_source, REPO, ROOT, ToolTest, compiler_cache, config, grade, main, matches, solution_folder
 
 # A correct test case ends in milliseconds, but on a machine shared with builds (load 20-40) the
 # hidden test with a thousand calls took over 3 s: the grader's own default, 10 s, costs nothing
@@ -73,11 +74,19 @@ def processes_named(comm):
     return found
 
 
-def leftovers(prefix):
-    found = []
-    for folder in ("/tmp", "/var/tmp", "/dev/shm"):
-        for dirpath, dirnames, filenames in os.walk(folder):
-            found += [os.path.join(dirpath, n) for n in dirnames + filenames if n.startswith(prefix)]
+def leftovers(prefix, depth=3):
+    """Entries named prefix... in /tmp, /var/tmp, /dev/shm and the folders below them, down to
+    depth (a folder nested thousands deep in /tmp, which anybody may make, must not stop the test)."""
+    found, pending = [], [(folder, 0) for folder in ("/tmp", "/var/tmp", "/dev/shm")]
+    while pending:
+        folder, level = pending.pop()
+        try:
+            entries = list(os.scandir(folder))
+        except OSError:
+            continue
+        found += [e.path for e in entries if e.name.startswith(prefix)]
+        if level < depth:
+            pending += [(e.path, level + 1) for e in entries if e.is_dir(follow_symlinks=False)]
     return found
 
 
@@ -92,21 +101,53 @@ def sysv_segments_of_sandbox_users():
 
 
 def make_submission(name, spec):
-    """The fixture's files as chapter 01's, with the real paths written in where it asks (substitute)."""
+    """The fixture's attack and the shared answer as chapter 01's file, with the real paths
+    written in where it asks (substitute)."""
+    places = {"@REPO@": REPO, "@TREE@": config.build_dir,
+              "@RESULTS@": os.path.abspath(os.path.join(config.work, "..", "grader-tests"))}
+    rel = os.path.join("chapters", os.path.basename(solution_folder("01")), "unit_sphere.cpp")
+    return tooltest.make_submission(os.path.join(config.work, "sub", name),
+                                    files={rel: fixture_source(name, places if spec.get("substitute") else None)})
+
+
+PLANTED = "/tmp/rt-odd-files-cmake-ran"     # the odd submission's CMakeLists.txt would make it
+
+
+def make_odd_submission(name):
+    """A correct chapter 01 (the shared answer) among entries a student could put beside it
+    (sandbox-odd-files/sandbox.json): headers and a CMakeLists.txt that break everything if the
+    grader used them, a fifo as chapter 02's file, folders nested deeper than Python's recursion
+    limit, a link loop, a link to /, long names and a name with escape codes."""
     sub = os.path.join(config.work, "sub", name)
-    shutil.rmtree(sub, ignore_errors=True)
-    target = os.path.join(sub, "chapters", os.path.basename(solution_folder("01")))
-    os.makedirs(target)
-    for path in glob.glob(os.path.join(FIXTURES, name, "*.cpp")):
-        with open(path) as f:
-            text = f.read()
-        if spec.get("substitute"):
-            text = (text.replace("@REPO@", REPO).replace("@TREE@", config.build_dir)
-                    .replace("@RESULTS@", os.path.abspath(os.path.join(config.work, "..", "grader-tests"))))
-        with open(os.path.join(target, os.path.basename(path)), "w") as f:
-            f.write(text)
-    for d in (sub, os.path.join(sub, "chapters"), target):
-        os.chmod(d, 0o755)
+    subprocess.run(["rm", "-rf", sub], check=True)     # shutil.rmtree recurses: too deep for it
+    if os.path.exists(PLANTED):
+        os.remove(PLANTED)
+    ch01 = os.path.join("chapters", os.path.basename(solution_folder("01")))
+    with open(os.path.join(FIXTURES, "answer.cpp")) as f:
+        answer = f.read()
+    files = {os.path.join(ch01, "unit_sphere.cpp"): answer,
+             os.path.join(ch01, "unit_sphere.hpp"): "#error SHADOWED-HEADER\n",
+             os.path.join("chapters", os.path.basename(solution_folder("03")), "scene_loop.hpp"): "#error SHADOWED\n",
+             "CMakeLists.txt": f"execute_process(COMMAND touch {PLANTED})\nmessage(FATAL_ERROR SHADOWED-CMAKE)\n",
+             ".gitattributes": "* filter=SHADOWED\n"}
+    files.update({os.path.join("common", h): "#error SHADOWED-COMMON\n" for h in ("math.hpp", "ray.hpp", "stub.hpp")})
+    tooltest.make_submission(sub, files=files)
+    ch02 = os.path.join(sub, "chapters", os.path.basename(solution_folder("02")))
+    os.makedirs(ch02)
+    os.mkfifo(os.path.join(ch02, "sphere.cpp"))
+    os.symlink(".", os.path.join(sub, "loop"))
+    os.symlink("/", os.path.join(sub, "root"))
+    os.mkdir(os.path.join(sub, "escape \x1b]0;owned\x07\x1b[2J"))
+    for i in range(5):
+        open(os.path.join(sub, "L" * 240 + str(i)), "w").close()
+    fd = os.open(sub, os.O_RDONLY)
+    for _ in range(1100):                      # deeper than Python's recursion limit (1000)
+        os.mkdir("d", 0o755, dir_fd=fd)
+        deeper = os.open("d", os.O_RDONLY, dir_fd=fd)
+        os.close(fd)
+        fd = deeper
+    os.mkdir(os.path.basename(solution_folder("01")), dir_fd=fd)   # a chapter folder nobody should reach
+    os.close(fd)
     return sub
 
 
@@ -118,6 +159,10 @@ class SandboxFixture(ToolTest):
             spec = json.load(f)
         if spec.get("make") == "links":
             return self.check_links()
+        if spec.get("make") == "odd-files":
+            # What the grader does with the rest of a submission does not depend on the isolation:
+            # graded once, in the machine's mode.
+            return self.check_mode(name, spec, make_odd_submission(name), machine_mode(), {})
         sub = make_submission(name, spec)
         for label, env in modes():
             with self.subTest(mode=label):
@@ -166,6 +211,9 @@ class SandboxFixture(ToolTest):
         if name == "sandbox-fork-orphan":
             time.sleep(0.2)
             self.assertEqual(processes_named("rt-orphan"), [], "a test process outlived grading")
+        if name == "sandbox-odd-files":
+            self.assertFalse(os.path.exists(PLANTED), "the submission's CMakeLists.txt was run")
+            self.assertFalse("\x1b" in graded.stdout + graded.stderr, "a raw escape code reached the terminal")
         if name == "sandbox-reads-secrets":
             self.assertIn("words to look at", graded.stderr, "the instructor note is missing from the log")
 

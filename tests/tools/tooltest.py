@@ -101,13 +101,43 @@ def solution_folder(chapter):
     return glob.glob(os.path.join(REPO, "solutions", f"{chapter}-*"))[0]
 
 
-def make_submission(dest, sources=(), solutions=()):
-    """A fresh submission folder: the given files at its top, and the solution
-    files of the given chapters in chapters/NN-name/."""
+def fixture_source(name, substitutions=None):
+    """Chapter 01's exercise file of the adversarial fixture NAME: its attack.cpp followed by the
+    correct answer all fixtures share (FIXTURES/answer.cpp), or its own unit_sphere.cpp when it
+    answers wrongly anyway; None when it has neither. substitutions: {placeholder: text}."""
+    folder = os.path.join(FIXTURES, name)
+    parts = [os.path.join(folder, "attack.cpp"), os.path.join(FIXTURES, "answer.cpp")]
+    if not os.path.isfile(parts[0]):
+        parts = [os.path.join(folder, "unit_sphere.cpp")]
+        if not os.path.isfile(parts[0]):
+            return None
+    text = ""
+    for path in parts:
+        with open(path) as f:
+            text += f.read()
+    for key, value in (substitutions or {}).items():
+        text = text.replace(key, value)
+    return text
+
+
+def fixture_files(name):
+    """The other files of fixture NAME that go into its submission as they are."""
+    keep = lambda p: os.path.basename(p) not in ("attack.cpp", "unit_sphere.cpp", "expect.json", "sandbox.json")
+    return [p for p in sorted(glob.glob(os.path.join(FIXTURES, name, "*"))) if keep(p)]
+
+
+def make_submission(dest, sources=(), solutions=(), files=None):
+    """A fresh submission folder: the given files at its top, the solution
+    files of the given chapters in chapters/NN-name/, and files ({path in
+    the submission: text}) written as given."""
     shutil.rmtree(dest, ignore_errors=True)
     os.makedirs(dest)
     for path in sources:
         shutil.copy(path, dest)
+    for rel, text in (files or {}).items():
+        os.makedirs(os.path.dirname(os.path.join(dest, rel)) or dest, exist_ok=True)
+        with open(os.path.join(dest, rel), "w") as f:
+            f.write(text)
     for chapter in solutions:
         folder = solution_folder(chapter)
         shutil.copytree(folder, os.path.join(dest, "chapters", os.path.basename(folder)))

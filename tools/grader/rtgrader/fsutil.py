@@ -42,12 +42,24 @@ def _open_beneath(root, rel):
                 raise
             os.close(fd)
             fd = nxt
+        # Looked at before it is opened: opening a device node (a tar unpacked by root makes them)
+        # can act on the device (a watchdog, a tape), and a fifo or socket is nothing to compile.
+        seen = os.stat(parts[-1], dir_fd=fd, follow_symlinks=False)
+        if stat.S_ISLNK(seen.st_mode):
+            raise Refused(f"{parts[-1]} is a link, not a file: submit the file itself")
+        if not stat.S_ISREG(seen.st_mode):
+            raise Refused(f"{parts[-1]} is not a regular file")
         try:
-            return os.open(parts[-1], os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK, dir_fd=fd)
+            opened = os.open(parts[-1], os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_NOCTTY, dir_fd=fd)
         except OSError as e:
             if e.errno == errno.ELOOP:
                 raise Refused(f"{parts[-1]} is a link, not a file: submit the file itself") from None
             raise
+        now = os.fstat(opened)
+        if (now.st_dev, now.st_ino) != (seen.st_dev, seen.st_ino):
+            os.close(opened)
+            raise Refused(f"{parts[-1]} changed while the grader read it")
+        return opened
     finally:
         os.close(fd)
 

@@ -3,6 +3,7 @@ into the instructor's test executables, run every test case in its own
 limited process, render each chapter's picture, and score the lot."""
 
 import dataclasses
+import itertools
 import os
 import queue
 import re
@@ -22,10 +23,28 @@ OUTPUT_SHOWN = 3000          # characters of a test's output put in results.json
 COMPILER_SHOWN = 3000        # characters of a compiler message
 
 # Words in a submission that deserve the instructor's eye (never shown as a score change).
-SUSPICIOUS = ["getenv", "environ", "RT_GRADER", "/proc", "fork", "exec", "system(", "popen", "_exit",
-              "quick_exit", "abort(", "__attribute__", "asm", "#include \"/", "#include </", "solutions/",
-              "hidden", "signal(", "setrlimit", "socket", "ptrace", "dlsym", "results.json", "incbin",
-              "extern \"C\"", "doctest", "#pragma", "weak"]
+# A word made of letters, digits and '_' is matched as a whole identifier only (`_exit`, not
+# the `_exit` inside `widen_exit`); any other entry (`system(`, `#include "/`) as plain text.
+SUSPICIOUS = ["getenv", "environ", "RT_GRADER", "/proc", "fork", "vfork", "clone", "execl", "execlp", "execv",
+              "execve", "execvp", "fexecve", "system(", "popen", "_exit", "_Exit", "quick_exit", "abort(",
+              "__attribute__", "asm", "__asm", "__asm__", "#include \"/", "#include </", "solutions/", "hidden",
+              "signal(", "setrlimit", "socket", "ptrace", "dlsym", "results.json", "incbin", "extern \"C\"",
+              "doctest", "#pragma", "weak", "syscall", "keyctl", "add_key", "unshare", "memfd_create", "prctl"]
+_IDENTIFIER = re.compile(r"\w+")
+
+
+def _word_pattern(word):
+    if _IDENTIFIER.fullmatch(word):
+        return re.compile(r"(?<!\w)" + re.escape(word) + r"(?!\w)")
+    return re.compile(re.escape(word))
+
+
+_SUSPICIOUS_PATTERNS = [(w, _word_pattern(w)) for w in SUSPICIOUS]
+
+
+def suspicious_words(text):
+    """The SUSPICIOUS entries found in text (identifiers as whole identifiers), in list order."""
+    return [w for w, pattern in _SUSPICIOUS_PATTERNS if pattern.search(text)]
 
 
 @dataclass
@@ -51,16 +70,42 @@ class TestResult:
     visibility: str = "visible"
 
 
+# How far the grader looks for a chapter's folder below the submission's top (a zip with a
+# folder of its own around the kit): a bounded look, breadth first, so a submission of a million
+# files or of folders nested thousands deep costs little and never exhausts the grader's stack.
+SEARCH_DEPTH = 6
+SEARCH_ENTRIES = 20000
+
+
+def _chapter_folders(submission, folder):
+    """Folders named `folder` below submission (no link followed, no hidden or build folder)."""
+    pending, seen = [(submission, 0)], 0
+    while pending:
+        parent, depth = pending.pop(0)
+        try:
+            with os.scandir(parent) as it:
+                entries = sorted(it, key=lambda e: e.name)
+        except OSError:
+            continue
+        for e in entries:
+            seen += 1
+            if seen > SEARCH_ENTRIES:
+                return
+            if e.name.startswith((".", "build")) or not e.is_dir(follow_symlinks=False):
+                continue
+            if e.name == folder:
+                yield e.path
+            if depth < SEARCH_DEPTH:
+                pending.append((e.path, depth + 1))
+
+
 def find_exercise(submission, ch, ex):
     """The contents of the submission's copy of exercise file ex, or (None, why)."""
     root = os.path.realpath(submission)
-    candidates = [os.path.join(submission, "chapters", ch["folder"], ex),
-                  os.path.join(submission, ch["folder"], ex),
-                  os.path.join(submission, ex)]
-    for dirpath, dirnames, filenames in os.walk(submission):
-        dirnames[:] = [d for d in dirnames if not d.startswith(".") and not d.startswith("build")]
-        if os.path.basename(dirpath) == ch["folder"] and ex in filenames:
-            candidates.append(os.path.join(dirpath, ex))
+    usual = [os.path.join(submission, "chapters", ch["folder"], ex), os.path.join(submission, ch["folder"], ex),
+             os.path.join(submission, ex)]
+    found_below = (os.path.join(d, ex) for d in _chapter_folders(submission, ch["folder"]))
+    candidates = itertools.chain(usual, found_below)
     for path in candidates:
         try:
             info = os.lstat(path)
@@ -161,15 +206,20 @@ class Grader:
         for lane in range(lanes):
             free_lanes.put(lane)
 
+        deadline = self._per.deadline      # self._per is this thread's: the compiles run in others
+
         def compile_one(cid):
             lane = free_lanes.get()   # a lane (user) no other compile is using now
             try:
                 lane_user = sandbox.sandbox_user(slot, lane + 1) if user is not None else None
-                found = self._compile(chapters[cid], sources[cid], work, logs, lane_user)
+                found = self._compile(chapters[cid], sources[cid], work, logs, lane_user, deadline)
             finally:
                 free_lanes.put(lane)
-            if user is not None:  # the tests run as the worker's own user
-                os.chown(os.path.join(work, cid), *user)
+            if user is not None:
+                # The compile folder was the lane user's; now it is the grader's alone. A folder the
+                # sandbox user kept would outlive its run: in the fallback by user, a runner (which
+                # sees hidden inputs) could leave them there for the chapter program to print.
+                make_dir(os.path.join(work, cid), (os.geteuid(), os.getegid()), 0o700)
             return found
 
         phase = time.monotonic()
@@ -223,14 +273,17 @@ class Grader:
         for cid, files in sources.items():
             for ex, data in files.items():
                 text = data.decode("utf-8", errors="replace")
-                words = [w for w in SUSPICIOUS if w in text]
+                words = suspicious_words(text)
                 if words:
                     found.append(f"{cid}/{ex}: {', '.join(words)}")
         return found
 
     # --- compiling ----------------------------------------------------------------------
-    def _compile(self, ch, files, work, logs, user):
-        """Compiles the chapter's exercise files as the sandbox user; returns ({ex: object}, error)."""
+    def _compile(self, ch, files, work, logs, user, deadline):
+        """Compiles the chapter's exercise files as the sandbox user; returns ({ex: object}, error).
+        Each compile gets at most 60 s, and no more than what is left of the submission's time
+        budget (deadline): eight files that each keep the compiler busy (a template bomb, an
+        #include of /dev/zero) must not hold a grading for eight minutes."""
         folder = os.path.join(work, ch["id"])
         make_dir(folder, user, 0o700)
         kept = os.path.join(work, "objects", ch["id"])    # the grader's own copies of the objects
@@ -246,7 +299,8 @@ class Grader:
             original = os.path.normpath(os.path.join(ch["chapter_dir"], ex))
             args = [src if os.path.normpath(a) == original else a for a in args]
             args[args.index("-o") + 1] = obj
-            limits = Limits(wall_seconds=60, cpu_seconds=60, memory_bytes=4096 * MiB,
+            seconds = min(60.0, max(1.0, deadline - time.monotonic()))
+            limits = Limits(wall_seconds=seconds, cpu_seconds=int(seconds) + 1, memory_bytes=4096 * MiB,
                             file_bytes=256 * MiB, processes=64, open_files=256, tmp_bytes=512 * MiB)
             outcome = sandbox.run(args, limits=limits, log_path=os.path.join(logs, f"{ch['id']}-{ex}.compile"),
                                   user=user, inputs=sandbox.include_inputs(args, self.tree.source),
@@ -366,9 +420,15 @@ class Grader:
         make_dir(scratch, user, 0o700)
         image = os.path.join(scratch, "render.png")
         program = os.path.join(os.path.dirname(folder), "bin", ch["id"], "program")
+        try:
+            return self._render_in(ch, scratch, image, program, render_limits, logs, out_dir, user)
+        finally:
+            fsutil.remove_tree(scratch)   # nothing a run wrote stays for a later run (or chapter) to read
+
+    def _render_in(self, ch, scratch, image, program, render_limits, logs, out_dir, user):
         outcome = sandbox.run([program, "--out", image], limits=render_limits, log_path=os.path.join(logs, "render"),
                               user=user, inputs=[program], scratch=scratch, private_root=self._per.work)
-        said = trim(outcome.output, 1000)       # shown as the program printed it: no pattern is run over a student's output
+        said = self._program_said(ch, outcome.output)
         if outcome.returncode == 3:
             return False, f"the chapter program reached an exercise that is not implemented yet:\n{said}"
         if outcome.returncode != 0 or outcome.timed_out:
@@ -391,6 +451,18 @@ class Grader:
         return False, (f"the picture differs from the reference render beyond tolerance: {figures}\n{where}\n"
                        "Open the difference image to see where.")
 
+    def _program_said(self, ch, output):
+        """What the feedback shows of the chapter program's output: as it printed it (no pattern is
+        run over a student's output), unless the program also holds the course's own code. When
+        grading with the solutions, a chapter's program links the earlier chapters it builds on
+        from the solutions (one mistake is charged once): the student's code could print that
+        code's bytes, and with them an earlier chapter's answer."""
+        if ch.get("depends") and self.tree.has_solutions:
+            which = ("chapters " if len(ch["depends"]) > 1 else "chapter ") + ", ".join(ch["depends"])
+            return f"(the program's output is not shown: it also holds the course's own code of {which}; " \
+                   "run it in your kit to see it)"
+        return trim(output, 1000)
+
     def _imgcmp(self, ch, picture, logs, user):
         """imgcmp on the student's picture, as the sandbox user with limits (it
         decodes a file the student made). Returns (figures, matched, diff bytes or None)."""
@@ -409,6 +481,7 @@ class Grader:
             diff_png = fsutil.read_regular(os.path.join(scratch, "diff.png"), 64 * MiB)
         except (OSError, fsutil.Refused):
             diff_png = None
+        fsutil.remove_tree(scratch)
         if outcome.timed_out or outcome.returncode < 0:
             figures = f"imgcmp {sandbox.describe_ending(outcome, limits)} on this picture"
         return figures, outcome.returncode == 0 and not outcome.timed_out, diff_png

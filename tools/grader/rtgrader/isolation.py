@@ -446,37 +446,76 @@ def _remove_stale(parent):
             _remove_quietly(os.path.join(parent, name))
 
 
-def no_new_namespaces_filter():
-    """A seccomp program (classic BPF, as bwrap --seccomp reads it) that stops
-    the sandboxed code from creating user namespaces of its own: unshare() and
-    clone() with CLONE_NEWUSER fail with EPERM, clone3() (whose flags live in
-    memory a filter cannot read) with ENOSYS, so the C library falls back to
-    clone(). Without it, root's sandbox user could still reach the kernel's
-    namespace code (not more files: nothing outside its mount namespace exists
-    for it). x86-64 only; elsewhere every call is allowed. Returns bytes."""
+def syscall_filter():
+    """A seccomp program (classic BPF, as bwrap --seccomp reads it and
+    prctl(PR_SET_SECCOMP) takes it) for every sandboxed process, x86-64 only
+    (elsewhere None: every call is allowed). It refuses:
+    - user namespaces of its own: unshare() and clone() with CLONE_NEWUSER fail
+      with EPERM, clone3() (whose flags live in memory a filter cannot read)
+      with ENOSYS, so the C library falls back to clone(). Without it, root's
+      sandbox user could still reach the kernel's namespace code;
+    - the kernel's keyrings (add_key, request_key, keyctl: ENOSYS). A user's
+      keyring belongs to its user id, not to a mount or PID namespace: a key
+      the runner adds (holding hidden inputs) would still be there for the
+      chapter program of the same user, which prints into visible feedback,
+      and for the next submission graded by that user;
+    - every call of the other system call ABIs (32-bit `int $0x80`, x32):
+      ENOSYS. The filter reads call numbers of one ABI; without this, the
+      32-bit numbers would pass unchecked.
+    Returns bytes."""
     import platform
     import struct
     if platform.machine() != "x86_64":
         return None
     ld_abs, jeq, jge, jset, ret = 0x20, 0x15, 0x35, 0x45, 0x06   # BPF_LD|W|ABS, BPF_JMP|{JEQ,JGE,JSET}|K, BPF_RET|K
     allow, eperm, enosys = 0x7fff0000, 0x00050000 | 1, 0x00050000 | 38
-    arch_x86_64, nr_clone, nr_unshare, nr_clone3, x32_bit = 0xc000003e, 56, 272, 435, 0x40000000
+    arch_x86_64, x32_bit = 0xc000003e, 0x40000000
+    nr_clone, nr_unshare, nr_clone3, nr_add_key, nr_request_key, nr_keyctl = 56, 272, 435, 248, 249, 250
     clone_newuser = 0x10000000
-    # (code, jump if true, jump if false, k): jumps count instructions skipped.
+    # (code, label if true, label if false, k); labels become the jump offsets below.
     program = [
-        (ld_abs, 0, 0, 4),                  # 0: A = arch
-        (jeq, 1, 0, arch_x86_64),           # 1: x86-64: to 3
-        (ret, 0, 0, allow),                 # 2: another ABI: not filtered
-        (ld_abs, 0, 0, 0),                  # 3: A = system call number
-        (jge, 8, 0, x32_bit),               # 4: x32 calls: to 13 (ENOSYS)
-        (jeq, 3, 0, nr_clone),              # 5: to 9
-        (jeq, 2, 0, nr_unshare),            # 6: to 9
-        (jeq, 5, 0, nr_clone3),             # 7: to 13 (ENOSYS)
-        (ret, 0, 0, allow),                 # 8
-        (ld_abs, 0, 0, 16),                 # 9: A = low half of the first argument (the flags)
-        (jset, 0, 1, clone_newuser),        # 10: CLONE_NEWUSER: 11, else 12
-        (ret, 0, 0, eperm),                 # 11
-        (ret, 0, 0, allow),                 # 12
-        (ret, 0, 0, enosys),                # 13
+        ("start", ld_abs, None, None, 4),               # A = arch
+        (None, jeq, None, "deny", arch_x86_64),         # another ABI: ENOSYS
+        (None, ld_abs, None, None, 0),                  # A = system call number
+        (None, jge, "deny", None, x32_bit),             # x32 calls: ENOSYS
+        (None, jeq, "flags", None, nr_clone),
+        (None, jeq, "flags", None, nr_unshare),
+        (None, jeq, "deny", None, nr_clone3),
+        (None, jeq, "deny", None, nr_add_key),
+        (None, jeq, "deny", None, nr_request_key),
+        (None, jeq, "deny", None, nr_keyctl),
+        (None, ret, None, None, allow),
+        ("flags", ld_abs, None, None, 16),              # A = low half of the first argument (the flags)
+        (None, jset, "refuse", None, clone_newuser),
+        (None, ret, None, None, allow),
+        ("refuse", ret, None, None, eperm),
+        ("deny", ret, None, None, enosys),
     ]
-    return b"".join(struct.pack("=HBBI", *insn) for insn in program)
+    where = {label: i for i, (label, *_) in enumerate(program) if label}
+
+    def offset(i, label):       # a jump skips that many instructions after the next one
+        return 0 if label is None else where[label] - i - 1
+    return b"".join(struct.pack("=HBBI", code, offset(i, yes), offset(i, no), k)
+                    for i, (_, code, yes, no, k) in enumerate(program))
+
+
+def syscall_filter_installer(program, libc):
+    """Where no bwrap installs it: a function for the child, before exec, that installs
+    program (syscall_filter()'s bytes) with prctl (then inherited by setpriv and the code).
+    Everything is prepared here, in the grader: the child only makes two calls. libc is
+    ctypes' C library, loaded in the grader. Not root: PR_SET_NO_NEW_PRIVS first, which
+    the kernel asks of an unprivileged filter. A child that cannot install it ends (126)."""
+    import ctypes
+
+    class SockFprog(ctypes.Structure):
+        _fields_ = [("len", ctypes.c_ushort), ("filter", ctypes.c_char_p)]
+    prog = SockFprog(len(program) // 8, program)
+    pointer = ctypes.byref(prog)
+
+    def install():
+        if os.geteuid() != 0 and libc.prctl(38, 1, 0, 0, 0) != 0:     # PR_SET_NO_NEW_PRIVS
+            os._exit(126)
+        if libc.prctl(22, 2, pointer, 0, 0) != 0:                     # PR_SET_SECCOMP, SECCOMP_MODE_FILTER
+            os._exit(126)
+    install.keep = (prog, program)      # alive as long as the function
+    return install

@@ -108,6 +108,17 @@ def _kill_group(pgid):
         pass
 
 
+_libc_handle = []
+
+
+def _libc():
+    """ctypes' C library, loaded once in the grader (never in a child after fork)."""
+    if not _libc_handle:
+        import ctypes
+        _libc_handle.append(ctypes.CDLL(None, use_errno=True))
+    return _libc_handle[0]
+
+
 def is_root():
     return os.geteuid() == 0
 
@@ -265,17 +276,7 @@ def _remove_leftovers(uid):
     """Fallback by user: what the run left in world-writable folders and
     System V IPC (there is no private /tmp to discard)."""
     for folder in WORLD_WRITABLE:
-        try:
-            names = os.listdir(folder)
-        except OSError:
-            continue
-        for name in names:
-            path = os.path.join(folder, name)
-            try:
-                if os.lstat(path).st_uid == uid:
-                    fsutil.remove_tree(path)
-            except OSError:
-                pass
+        _remove_entries_of(uid, folder, depth=4)
     for kind, flag, column in (("shm", "-m", 7), ("sem", "-s", 4), ("msg", "-q", 7)):
         try:
             with open(f"/proc/sysvipc/{kind}") as f:
@@ -285,6 +286,26 @@ def _remove_leftovers(uid):
         for row in rows:
             if len(row) > column and row[column] == str(uid) and shutil.which("ipcrm"):
                 subprocess.run(["ipcrm", flag, row[1]], capture_output=True)
+
+
+def _remove_entries_of(uid, folder, depth):
+    """Removes what uid owns in folder, and in the folders below it that others may write
+    (/tmp/.X11-unix, a classmate's 1777 folder): a file hidden one level down would
+    otherwise outlive the run. Links are removed, never followed."""
+    try:
+        names = os.listdir(folder)
+    except OSError:
+        return
+    for name in names:
+        path = os.path.join(folder, name)
+        try:
+            info = os.lstat(path)
+            if info.st_uid == uid:
+                fsutil.remove_tree(path)
+            elif depth > 0 and stat.S_ISDIR(info.st_mode) and info.st_mode & 0o002:
+                _remove_entries_of(uid, path, depth - 1)
+        except OSError:
+            pass
 
 
 def _count_own_threads():
@@ -440,10 +461,12 @@ def run(argv, *, limits, log_path, user=None, inputs=(), scratch=None, env_extra
     private_root = private_root or "/tmp"
     moved, own_cwd = {}, None
     seccomp_fd = None
+    program_bytes = isolation.syscall_filter()   # no user namespaces, no keyrings, no 32-bit calls
+    install_filter = isolation.syscall_filter_installer(program_bytes, _libc()) \
+        if program_bytes and iso.mode != isolation.NAMESPACES else None
     if iso.mode == isolation.NAMESPACES:
         cwd = os.path.abspath(scratch) if scratch else "/tmp"
-        program_bytes = isolation.no_new_namespaces_filter() if user is not None else None
-        if program_bytes:     # root's sandbox user may not make user namespaces (unprivileged bwrap forbids them itself)
+        if program_bytes:
             seccomp_fd, w = os.pipe()
             os.write(w, program_bytes)
             os.close(w)
@@ -488,6 +511,8 @@ def run(argv, *, limits, log_path, user=None, inputs=(), scratch=None, env_extra
         resource.setrlimit(resource.RLIMIT_NPROC, (nproc, nproc))
         resource.setrlimit(resource.RLIMIT_NOFILE, (limits.open_files, limits.open_files))
         resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+        if install_filter is not None:      # without bwrap, the filter is installed here
+            install_filter()
 
     kwargs = {}
     if user is not None and iso.mode != isolation.NAMESPACES and not iso.setpriv:
