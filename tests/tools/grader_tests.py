@@ -179,27 +179,41 @@ class ProgramOutput(ToolTest):
 
 class Batch(ToolTest):
     def test_batch_grades_each_submission_and_writes_the_scores(self):
+        """Each submission gets its results and a row of scores.csv; mallory's file includes alice's
+        answer by its path and gains nothing: with namespaces it does not exist for her compiler,
+        and in the fallback by user (root) the submissions are closed to the sandbox users."""
         folder = os.path.join(config.work, "batch-in")
         shutil.rmtree(folder, ignore_errors=True)
-        make_submission(os.path.join(folder, "alice"), solutions=["01"])
+        alice = make_submission(os.path.join(folder, "alice"), solutions=["01"])
         make_submission(os.path.join(folder, "bob"), files={"unit_sphere.cpp": fixture_source("segfault")})
         make_submission(os.path.join(folder, "carol"))
+        answer = os.path.join(alice, "chapters", os.path.basename(solution_folder("01")), "unit_sphere.cpp")
+        make_submission(os.path.join(folder, "mallory"), files={"unit_sphere.cpp": f'#include "{answer}"\n'})
+        for mode, env in (("machine's best", {}), ("fallback", {"RT_GRADER_ISOLATION": "fallback"})):
+            with self.subTest(mode=mode):
+                self.check_batch(folder, mode, env)
+
+    def check_batch(self, folder, mode, env):
         out = os.path.join(config.work, "batch-out")
         shutil.rmtree(out, ignore_errors=True)
         cmd = [sys.executable, os.path.join(REPO, "tools", "grader", "grade-batch"), folder, "--out", out,
                "--build-dir", config.build_dir, "--chapters", "01", "--jobs", "2", *TEST_LIMITS]
-        result = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+        before = os.stat(folder).st_mode
+        result = subprocess.run(cmd, capture_output=True, text=True, timeout=300, env=dict(os.environ, **env))
         print(result.stdout, result.stderr)
         self.assertEqual(result.returncode, 0, "grade-batch failed")
+        self.assertEqual(os.stat(folder).st_mode, before, "the submissions' folder keeps its mode")
         scores = {who: self.assertValidResults(os.path.join(out, who, "results.json"))["score"]
-                  for who in ("alice", "bob", "carol")}
+                  for who in ("alice", "bob", "carol", "mallory")}
         with open(os.path.join(out, "scores.csv")) as f:
             rows = f.read().splitlines()
         self.assertTrue(rows[0].startswith("submission,score,max_score,ch01"), rows)
-        self.assertEqual(len(rows), 4, rows)
+        self.assertEqual(len(rows), 5, rows)
         self.assertGreater(scores["alice"], 0, scores)
         self.assertEqual(scores["carol"], 0, scores)
         self.assertTrue(0 < scores["bob"] < scores["alice"], f"implausible batch scores {scores}")
+        if ROOT or "FALLBACK" not in result.stderr:
+            self.assertEqual(scores["mallory"], 0, f"{mode}: a classmate's answer was compiled in")
 
 
 class KitPreview(ToolTest):

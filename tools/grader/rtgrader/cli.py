@@ -2,13 +2,14 @@
 
 import argparse
 import csv
+import io
 import os
 import sys
 import time
 import traceback
 from concurrent.futures import ThreadPoolExecutor
 
-from . import grading, manifest, results, tree
+from . import fsutil, grading, manifest, results, tree
 from .sandbox import Limits
 
 
@@ -166,8 +167,10 @@ def batch_main(argv=None):
     if problems:
         print("The grader refuses to run:\n" + _manifest_report(grader, entries, problems, path), file=sys.stderr)
         return 2
-    names = sorted(d for d in os.listdir(args.folder) if os.path.isdir(os.path.join(args.folder, d)))
+    names = sorted(d for d in os.listdir(args.folder)
+                   if os.path.isdir(os.path.join(args.folder, d)) and not os.path.islink(os.path.join(args.folder, d)))
     grader.options.jobs = 1           # parallel over submissions instead
+    out_dir = fsutil.own_folder(args.out)
 
     def one(name):
         out = os.path.join(os.path.abspath(args.out), name, "results.json")
@@ -177,18 +180,21 @@ def batch_main(argv=None):
         except Exception as e:
             data = results.failure(f"The grader failed on this submission: {e}")
         results.write(data, out)
-        print(f"{name}: {data['score']:g} ({data['execution_time']} s)", file=sys.stderr)
+        print(f"{results.terminal_safe(name)}: {data['score']:g} ({data['execution_time']} s)", file=sys.stderr)
         return name, data
 
-    with ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+    # While they are graded, the submissions are closed to every other user: in the fallback by user
+    # a student's compile could otherwise #include a classmate's answer by its path.
+    with fsutil.closed_to_others(args.folder), ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
         graded = list(pool.map(one, names))
     chapter_ids = grader.chapter_ids
-    with open(os.path.join(args.out, "scores.csv"), "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["submission", "score", "max_score"] + chapter_ids)
-        for name, data in graded:
-            per = [sum(x["score"] for x in data["tests"] if x["tags"][0] == c) for c in chapter_ids]
-            w.writerow([name, data["score"], sum(x["max_score"] for x in data["tests"])] + per)
+    table = io.StringIO()
+    w = csv.writer(table)
+    w.writerow(["submission", "score", "max_score"] + chapter_ids)
+    for name, data in graded:
+        per = [sum(x["score"] for x in data["tests"] if x["tags"][0] == c) for c in chapter_ids]
+        w.writerow([name, data["score"], sum(x["max_score"] for x in data["tests"])] + per)
+    fsutil.write_atomic(os.path.join(out_dir, "scores.csv"), table.getvalue().encode())
     print(f"graded {len(graded)} submissions in {time.monotonic() - start:.1f} s -> "
           f"{os.path.join(args.out, 'scores.csv')}")
     return 0

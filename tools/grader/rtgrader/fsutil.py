@@ -208,6 +208,21 @@ def private_lock(path):
         os.close(fd)
 
 
+@contextmanager
+def closed_to_others(folder):
+    """As root: folder is closed to group and others while the block runs, its mode restored
+    afterwards (the grader reads it as root; no sandbox user needs it). Not root: unchanged."""
+    mode = stat.S_IMODE(os.stat(folder).st_mode)
+    close = os.geteuid() == 0 and mode & 0o077
+    if close:
+        os.chmod(folder, mode & ~0o077)
+    try:
+        yield
+    finally:
+        if close:
+            os.chmod(folder, mode)
+
+
 def new_private_folder(parent, user=None):
     """A new empty folder in parent for one run, owned by the sandbox user
     (uid, gid) when given, reachable by nobody else."""
