@@ -14,6 +14,7 @@
 #include "05-triangle/triangle.hpp"
 
 #include "common/hit_record.hpp"
+#include "rpc/served.hpp"
 
 #include <cstdint>
 #include <cstring>
@@ -46,17 +47,18 @@ struct objects {
         return ch05::intersect_triangle(triangles[k - spheres.size()], r, range);
     }
 
-    // The same in the form the tree asks it (leaf_intersector), counting how
-    // often it is called.
-    leaf_intersector<T> intersector(long* calls = nullptr) const {
-        return [this, calls](int i, const ray<T>& r, const interval<T>& range, hit_record<T>& hit) {
-            if (calls) ++*calls;
-            const auto h = test(i, r, range);
-            if (!h) return false;
-            hit = *h;
-            hit.object = i;
-            return true;
-        };
+    // The same in the form the tree asks it (leaf_intersector). It is a served
+    // callback (tests/support/rpc/served.hpp): under the grader it is answered
+    // in the process running your code, from a table of every object's hits
+    // along the call's ray. `budget` limits how many objects one call may ask:
+    // an ask beyond it is answered with a fault record, a hit nearer than any
+    // other, which fault_in() recognises in the traversal's answer.
+    leaf_intersector<T> intersector(long budget = -1) const {
+        rt::test::served_objects<T> served;
+        served.count = count();
+        served.test = [this](int i, const ray<T>& r, const interval<T>& range) { return test(i, r, range); };
+        served.budget = budget;
+        return served;
     }
 };
 

@@ -1,7 +1,8 @@
 // Chapter 08's exercise functions for the judge and the runner (table.hpp explains the two halves).
-// The tree travels whole (its nodes and order); the leaf intersector is a callback whose hit_record&
-// output travels back with its answer (wire.hpp).
+// The tree travels whole (its nodes and order); the leaf intersector travels as the table of hits the
+// test's callback stands for along the call's ray, and is answered in the runner (served.hpp).
 #include "08-acceleration/bvh.hpp"
+#include "served_wire.hpp"
 #include "table.hpp"
 
 namespace rt::ch08 {
@@ -38,11 +39,12 @@ bvh<T> build_sah(const std::vector<aabb<T>>& boxes, const build_options& options
 template <class T>
 std::optional<hit_record<T>> closest_hit(const bvh<T>& tree, const leaf_intersector<T>& intersect, const ray<T>& r,
                                          const interval<T>& range) {
-    return RT_RPC_FORWARD(closest_hit, tree, intersect, r, range);
+    return RT_RPC_FORWARD_AS(std::optional<hit_record<T>>, closest_hit, tree, ::rt::rpc::served_for(intersect, r), r,
+                             range);
 }
 template <class T>
 bool any_hit(const bvh<T>& tree, const leaf_intersector<T>& intersect, const ray<T>& r, const interval<T>& range) {
-    return RT_RPC_FORWARD(any_hit, tree, intersect, r, range);
+    return RT_RPC_FORWARD_AS(bool, any_hit, tree, ::rt::rpc::served_for(intersect, r), r, range);
 }
 }  // namespace rt::ch08
 #endif

@@ -21,6 +21,10 @@
 // Inside the judge's definition of `name`: send the call, return the answer.
 #define RT_RPC_FORWARD(name, ...) \
     ::rt::rpc::forward<decltype(name<T>(__VA_ARGS__))>(::rt::rpc::call_name<T>(RT_RPC_CHAPTER "::" #name), __VA_ARGS__)
+// The same with the result type R given, for a call whose arguments are not the function's own (a
+// served callback travels as its table, served_wire.hpp).
+#define RT_RPC_FORWARD_AS(R, name, ...) \
+    ::rt::rpc::forward<R>(::rt::rpc::call_name<T>(RT_RPC_CHAPTER "::" #name), __VA_ARGS__)
 
 #elif defined(RT_RPC_PLACEHOLDER)
 
@@ -37,6 +41,7 @@ template <class R, class... A>
 
 #define RT_RPC_DEFINES_STUBS 1
 #define RT_RPC_FORWARD(name, ...) ::rt::rpc::placeholder<decltype(name<T>(__VA_ARGS__))>(#name, __VA_ARGS__)
+#define RT_RPC_FORWARD_AS(R, name, ...) ::rt::rpc::placeholder<R>(#name)  // the arguments are not evaluated
 
 #elif defined(RT_RPC_RUNNER)
 
