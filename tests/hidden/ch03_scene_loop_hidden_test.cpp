@@ -9,6 +9,7 @@
 #include "03-scene-loop/scene_loop.hpp"
 #include "02-sphere/sphere.hpp"
 
+#include "rpc/served.hpp"
 #include "test_support.hpp"
 
 #include <algorithm>
@@ -28,11 +29,16 @@ T never() {
     return std::numeric_limits<T>::quiet_NaN();  // a wall the ray never meets: contains(NaN) is false
 }
 
-// Object i is met at walls[i]; its record's normal is (tags[i], 0, 1).
+// Object i is met at walls[i]; its record's normal is (tags[i], 0, 1). A
+// served callback (tests/support/rpc/served.hpp): answered in the runner from
+// a table of the walls for the call's ray. A call about an object outside
+// 0 .. n-1, beyond a budget, or other than the expected next one is answered
+// with a fault record (a hit nearer than any), found in the answer by fault_in().
 template <class T>
-ch03::object_intersector<T> walls_at(const std::vector<T>& walls, const std::vector<int>& tags) {
-    return [walls, tags](int i, const ray<T>& r, const interval<T>& range) -> std::optional<hit_record<T>> {
-        if (i < 0 || size_t(i) >= walls.size()) return std::nullopt;  // a loop that runs past the end gets nothing
+rt::test::served_objects<T> walls_at(const std::vector<T>& walls, const std::vector<int>& tags) {
+    rt::test::served_objects<T> served;
+    served.count = int(walls.size());
+    served.test = [walls, tags](int i, const ray<T>& r, const interval<T>& range) -> std::optional<hit_record<T>> {
         const T t = walls[size_t(i)];
         if (!range.contains(t)) return std::nullopt;
         hit_record<T> hit;
@@ -41,13 +47,27 @@ ch03::object_intersector<T> walls_at(const std::vector<T>& walls, const std::vec
         hit.normal = vec3<T>(T(tags[size_t(i)]), 0, 1);
         return hit;
     };
+    return served;
 }
 
 template <class T>
-ch03::object_intersector<T> walls_at(const std::vector<T>& walls) {
+rt::test::served_objects<T> walls_at(const std::vector<T>& walls) {
     std::vector<int> tags(walls.size());
     std::iota(tags.begin(), tags.end(), 0);
     return walls_at(walls, tags);
+}
+
+// The same walls, with every call checked: object 0, 1, 2, ... each asked
+// about (caller's tmin, closest t so far), and nothing after.
+template <class T>
+rt::test::served_objects<T> walls_checking_calls(const std::vector<T>& walls, interval<T> range) {
+    rt::test::served_objects<T> served = walls_at(walls);
+    served.check_calls = true;
+    for (size_t i = 0; i < walls.size(); ++i) {
+        served.expected.push_back({int(i), range});
+        if (range.contains(walls[i])) range.max = walls[i];
+    }
+    return served;
 }
 
 template <class T>
@@ -168,14 +188,14 @@ TEST_CASE_TEMPLATE("objects at or before tmin are not hit", T, RT_SCALARS) {
 }
 
 TEST_CASE_TEMPLATE("no objects means a miss without asking anything", T, RT_SCALARS) {
-    int calls = 0;
-    ch03::object_intersector<T> counting = [&](int, const ray<T>&, const interval<T>&) {
-        ++calls;
-        return std::optional<hit_record<T>>();
-    };
-    const bool empty_miss = !closest_hit<T>(0, counting, forward<T>(), ahead<T>()).has_value();
-    const bool negative_miss = !closest_hit<T>(-3, counting, forward<T>(), ahead<T>()).has_value();
-    const bool nothing_asked = calls == 0;
+    // No call allowed: a call is answered with a fault record, a hit.
+    auto counting = walls_at(std::vector<T>{});
+    counting.budget = 0;
+    const auto empty = closest_hit<T>(0, counting, forward<T>(), ahead<T>());
+    const auto negative = closest_hit<T>(-3, counting, forward<T>(), ahead<T>());
+    const bool empty_miss = !empty.has_value();
+    const bool negative_miss = !negative.has_value();
+    const bool nothing_asked = !rt::test::fault_in(empty) && !rt::test::fault_in(negative);
     CHECK_MESSAGE(empty_miss, "an empty scene is a miss");
     CHECK_MESSAGE(negative_miss, "a negative object count is an empty scene: a miss");
     CHECK_MESSAGE(nothing_asked, "with no objects the intersector is never called");
@@ -187,28 +207,24 @@ TEST_CASE_TEMPLATE("each object is tested with tmax shrunk to the closest hit so
     for (int trial = 0; trial < random_scenes; ++trial) {
         const int n = 1 + trial % 9;
         const std::vector<T> walls = random_walls<T>(rng, n, T(0.1), T(40), 0.25);
-        const auto wall = walls_at(walls);
         const interval<T> start{T(trial % 3 == 0 ? 0.0 : 0.5), trial % 2 == 0 ? infinity<T> : T(30)};
-        std::vector<int> asked;
-        std::vector<interval<T>> ranges;
-        ch03::object_intersector<T> recording = [&](int i, const ray<T>& r, const interval<T>& range) {
-            asked.push_back(i);
-            ranges.push_back(range);
-            return wall(i, r, range);
-        };
-        (void)closest_hit<T>(n, recording, forward<T>(), start);
-        std::vector<int> expected_order(static_cast<size_t>(n));
-        std::iota(expected_order.begin(), expected_order.end(), 0);
-        if (asked != expected_order) {
+        const auto hit = closest_hit<T>(n, walls_checking_calls(walls, start), forward<T>(), start);
+        if (const auto fault = rt::test::fault_in(hit)) {
+            // The first call that broke the order, or asked about another range.
+            if (fault->call >= n || fault->object != fault->call) each_once = false;
+            else ranges_ok = false;
+            break;
+        }
+        // Every call so far was the expected one. The answer is the record of the
+        // nearest wall (its t and tag; the index is another test's) only if the
+        // loop went on asking up to the last object.
+        const int best = nearest_wall(walls, start);
+        const bool got_nearest = best < 0 ? !hit.has_value()
+                                          : hit.has_value() && hit->t == walls[size_t(best)] && hit->normal.x == T(best);
+        if (!got_nearest) {
             each_once = false;
             break;
         }
-        T best = start.max;
-        for (size_t k = 0; k < size_t(n); ++k) {
-            ranges_ok = ranges_ok && ranges[k].min == start.min && ranges[k].max == best;
-            if (interval<T>{start.min, best}.contains(walls[k])) best = walls[k];
-        }
-        if (!ranges_ok) break;
     }
     CHECK_MESSAGE(each_once, "every object is tested exactly once, in order 0 .. object_count-1");
     CHECK_MESSAGE(ranges_ok, "object i is asked about (tmin, closest t so far): each hit shrinks tmax");
@@ -285,12 +301,11 @@ TEST_CASE_TEMPLATE("a range reaching behind the origin returns the smallest t", 
 
 TEST_CASE_TEMPLATE("the ray is passed on unchanged", T, RT_SCALARS) {
     const ray<T> r{{T(1.5), T(-2), T(3)}, {T(0.25), T(0.5), T(-4)}};
-    bool same = true;
-    ch03::object_intersector<T> checking = [&](int, const ray<T>& seen, const interval<T>&) {
-        same = same && seen.origin == r.origin && seen.direction == r.direction;
-        return std::optional<hit_record<T>>();
-    };
-    (void)closest_hit<T>(3, checking, r, ahead<T>());
+    // Walls the ray never meets, asked about r alone: a call about another ray
+    // is answered with a fault record.
+    auto checking = walls_at(std::vector<T>(3, never<T>()));
+    checking.only_ray = r;
+    const bool same = !rt::test::fault_in(closest_hit<T>(3, checking, r, ahead<T>()));
     CHECK_MESSAGE(same, "every object is asked about the caller's ray itself");
 }
 
@@ -307,7 +322,9 @@ TEST_CASE_TEMPLATE("random scenes of spheres agree with testing every sphere", T
         const int n = 2 + trial % 15;
         std::vector<sphere<T>> spheres(static_cast<size_t>(n));
         for (auto& s : spheres) s = {{coord(rng), coord(rng), depth(rng)}, size(rng)};
-        const ch03::object_intersector<T> intersect = [&](int i, const ray<T>& r, const interval<T>& range) {
+        rt::test::served_objects<T> intersect;
+        intersect.count = n;
+        intersect.test = [&spheres](int i, const ray<T>& r, const interval<T>& range) {
             return ch02::intersect_sphere(spheres[size_t(i)], r, range);
         };
         const ray<T> r{{0, 0, 0}, {coord(rng) / T(8), coord(rng) / T(8), T(-1)}};

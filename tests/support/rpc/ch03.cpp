@@ -1,5 +1,7 @@
 // Chapter 03's exercise functions for the judge and the runner (table.hpp explains the two halves).
-// The intersector is a callback: the student's loop calls it in the runner, it runs in the judge.
+// The intersector travels as the table of hits the test's callback stands for along the call's ray, and
+// is answered in the runner (served.hpp).
+#include "served_wire.hpp"
 #include "table.hpp"
 #include "03-scene-loop/scene_loop.hpp"
 
@@ -8,7 +10,8 @@ namespace rt::ch03 {
 template <class T>
 std::optional<hit_record<T>> closest_hit(int object_count, const object_intersector<T>& intersect, const ray<T>& r,
                                          interval<T> range) {
-    return RT_RPC_FORWARD(closest_hit, object_count, intersect, r, range);
+    return RT_RPC_FORWARD_AS(std::optional<hit_record<T>>, closest_hit, object_count,
+                             ::rt::rpc::served_for(intersect, r), r, range);
 }
 }  // namespace rt::ch03
 #endif
