@@ -3,7 +3,8 @@
 // One call: the judge sends `call` (the function's name and its arguments); the runner runs the student's
 // function and sends `answer` (the result) or `threw` (the exception). While a call is outstanding the
 // runner may send `call_back` (a callback argument called by the student's code, e.g. chapter 03's
-// intersector); the judge runs it and sends `call_back_answer` or `threw`, and keeps waiting.
+// intersector); the judge runs it and sends `call_back_answer` or `threw`, and keeps waiting. Before its
+// first call to a runner the judge sends `same_cpu`: the CPU the two share (judge.cpp, share_cpu).
 #pragma once
 
 #include "wire.hpp"
@@ -20,7 +21,8 @@ enum class kind : std::uint8_t {
     answer = 2,           // runner -> judge: the result
     threw = 3,            // either way: exception kind, message
     call_back = 4,        // runner -> judge: callback number, arguments
-    call_back_answer = 5  // judge -> runner: the callback's result
+    call_back_answer = 5, // judge -> runner: the callback's result
+    same_cpu = 6          // judge -> runner: run on this CPU (a 32-bit number), the judge's own; no answer
 };
 
 // The exceptions that cross: tests check some of their types (std::invalid_argument for bad input).
