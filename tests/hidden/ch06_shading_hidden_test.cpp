@@ -10,6 +10,7 @@
 #include "05-triangle/triangle.hpp"
 
 #include "common/camera.hpp"
+#include "rpc/served.hpp"
 #include "test_support.hpp"
 
 #include <cmath>
@@ -91,14 +92,17 @@ ld reference_blinn_phong(const vec3<T>& n, const vec3<T>& l, const vec3<T>& v, l
     return c > 0 ? std::pow(std::fmin(c, ld(1)), shininess) : ld(0);
 }
 
+// The plain occlusion tests, served ones (tests/support/rpc/served.hpp): in
+// the runner, shade() gets a table of the shadow rays it may ask (the
+// student's own shadow_ray() for each light) with the answer to each.
 template <class T>
 ch06::occlusion_test<T> nothing_blocks() {
-    return [](const ray<T>&, const interval<T>&) { return false; };
+    return rt::test::nothing_blocks<T>();
 }
 
 template <class T>
 ch06::occlusion_test<T> everything_blocks() {
-    return [](const ray<T>&, const interval<T>&) { return true; };
+    return rt::test::everything_blocks<T>();
 }
 
 material glossy(color diffuse, color specular, float shininess) {
@@ -145,42 +149,40 @@ test_scene<T> make_scene(T scale, vec3<T> shift) {
     return s;
 }
 
-// Renders the scene with the reference loop and the student's shade(), and
-// counts shadow rays that hit the very object they leave. Every object is
-// convex, so a shadow ray leaving a lit point can never truly re-enter it:
-// each such hit is shadow acne. `lit` counts the shadow rays checked.
+// Renders the scene with the reference loop and, for every hit and every
+// light above it, asks the student's shadow_ray() for the shadow ray from that
+// hit (the one shade() asks about, shading.hpp) and counts those that hit the
+// very object they leave. Every object is convex, so a shadow ray leaving a
+// lit point can never truly re-enter it: each such hit is shadow acne. `lit`
+// counts the shadow rays checked.
 template <class T>
 long count_acne(const test_scene<T>& s, int width, int height, long& lit) {
     auto frame = camera_frame<T>::look_at(s.eye, s.target, {0, 1, 0});
     pinhole_camera<T> camera(frame, T(55), width, height);
-    const ch03::object_intersector<T> intersect = [&](int i, const ray<T>& r, const interval<T>& range) {
-        return s.intersect(i, r, range);
-    };
+    rt::test::served_objects<T> intersect;
+    intersect.count = s.count();
+    intersect.test = [&s](int i, const ray<T>& r, const interval<T>& range) { return s.intersect(i, r, range); };
     long acne = 0;
     lit = 0;
-    int current = -1;
-    vec3<T> facing(0);  // the hit's normal, turned towards the viewer
-    const ch06::occlusion_test<T> own_surface_only = [&](const ray<T>& r, const interval<T>& range) {
-        // Only shadow rays that leave the lit side are about acne; a shadow ray
-        // sent into the surface is a different mistake, tested elsewhere.
-        if (!(dot(r.direction, facing) > T(0))) return false;
-        ++lit;
-        if (s.intersect(current, r, range)) ++acne;
-        return false;
-    };
-    std::vector<point_light> lights;
-    for (const vec3<T>& p : s.lights) lights.push_back({convert<double>(p), color(1)});
-    material m;
     for (int row = 0; row < height; ++row)
         for (int col = 0; col < width; ++col) {
             const ray<T> r = camera.primary_ray(col, row);
             // (0, inf) rather than t > 1: the tiny scene lies entirely between the eye and an image
             // plane at distance 1. Nothing in these scenes is behind the eye.
-            auto hit = ch03::closest_hit(s.count(), intersect, r, interval<T>{T(0), infinity<T>});
+            auto hit = ch03::closest_hit(s.count(), ch03::object_intersector<T>(intersect), r,
+                                         interval<T>{T(0), infinity<T>});
             if (!hit) continue;
-            current = hit->object;
-            facing = dot(hit->normal, r.direction) < T(0) ? hit->normal : -hit->normal;
-            (void)ch06::shade(hit->point, hit->normal, -r.direction, m, lights, color(0), own_surface_only);
+            // The normal turned towards the viewer, as shade() turns it.
+            const vec3<T> facing = dot(hit->normal, r.direction) < T(0) ? hit->normal : -hit->normal;
+            for (const vec3<T>& light : s.lights) {
+                if (!(dot(light - hit->point, facing) > T(0))) continue;  // below the surface: no shadow ray
+                const ch06::shadow_query<T> q = ch06::shadow_ray(hit->point, facing, light);
+                // Only shadow rays that leave the lit side are about acne; a shadow ray
+                // sent into the surface is a different mistake, tested elsewhere.
+                if (!(dot(q.r.direction, facing) > T(0))) continue;
+                ++lit;
+                if (s.intersect(hit->object, q.r, q.range)) ++acne;
+            }
         }
     return acne;
 }
@@ -447,14 +449,19 @@ TEST_CASE_TEMPLATE("hidden: shade turns the normal towards the viewer", T, RT_SC
 }
 
 TEST_CASE_TEMPLATE("hidden: a light below the surface sends no shadow ray", T, RT_SCALARS) {
-    int asked = 0;
-    const ch06::occlusion_test<T> counting = [&](const ray<T>&, const interval<T>&) {
-        ++asked;
-        return false;
-    };
-    const color c = ch06::shade(vec3<T>(0), vec3<T>(0, 1, 0), vec3<T>(0, 1, 1), glossy(color(0.5f), color(1), 8),
-                                {{{0, -2, 0}, color(4)}, {{3, -1, 0}, color(4)}}, color(0), counting);
-    CHECK_MESSAGE((asked == 0 && c.r == 0.0f && c.g == 0.0f && c.b == 0.0f),
+    // No question allowed: one makes the occlusion test throw std::logic_error out of shade().
+    auto no_question = rt::test::nothing_blocks<T>();
+    no_question.budget = 0;
+    const ch06::occlusion_test<T> counting = no_question;
+    bool asked = false;
+    color c(1);
+    try {
+        c = ch06::shade(vec3<T>(0), vec3<T>(0, 1, 0), vec3<T>(0, 1, 1), glossy(color(0.5f), color(1), 8),
+                        {{{0, -2, 0}, color(4)}, {{3, -1, 0}, color(4)}}, color(0), counting);
+    } catch (const std::logic_error&) {
+        asked = true;
+    }
+    CHECK_MESSAGE((!asked && c.r == 0.0f && c.g == 0.0f && c.b == 0.0f),
                   "a light below the surface contributes nothing, so there is no need to trace its shadow ray");
 }
 
@@ -465,18 +472,23 @@ TEST_CASE_TEMPLATE("hidden: shade asks only about the segment up to the light", 
         const vec3<T> p = rnd.direction(T(0.1), T(10)), n = rnd.direction();
         const vec3<T> light = p + n * T(0.01) + rnd.direction(T(0.5), T(20));
         if (!(dot(light - p, n) > T(0))) continue;
-        bool right_question = false;
-        const ch06::occlusion_test<T> check = [&](const ray<T>& r, const interval<T>& range) {
-            const ch06::shadow_query<T> q = ch06::shadow_ray(p, n, light);
+        // shade() may only ask about shadow_ray(p, n, light) (anything else throws). The answer:
+        // blocked unless that segment ends at the light and starts at t >= 0, so a right question
+        // leaves the point lit and a wrong segment leaves it dark.
+        const auto segment_to_light = [&](const ray<T>& r, const interval<T>& range) {
             const vec3<T> end = r.at(range.max);
-            right_question = r.origin == q.r.origin && is_finite(end) &&
-                             ld_len(vec3<T>(end - light)) <= (sizeof(T) == 4 ? 1e-4L : 1e-10L) * (1 + ld_len(light)) &&
-                             !(range.min < T(0));
-            return false;
+            return !(is_finite(end) &&
+                     ld_len(vec3<T>(end - light)) <= (sizeof(T) == 4 ? 1e-4L : 1e-10L) * (1 + ld_len(light)) &&
+                     !(range.min < T(0)));
         };
-        (void)ch06::shade(p, n, n, glossy(color(0.5f), color(0), 8), {{convert<double>(light), color(1)}}, color(0),
-                          check);
-        ok = right_question;
+        const ch06::occlusion_test<T> check = rt::test::served_occlusion<T>{segment_to_light};
+        try {
+            const color c = ch06::shade(p, n, n, glossy(color(0.5f), color(0), 8),
+                                        {{convert<double>(light), color(1)}}, color(0), check);
+            ok = c.r > 0.0f;
+        } catch (const std::logic_error&) {
+            ok = false;
+        }
     }
     CHECK_MESSAGE(ok, "the occlusion test must be asked about the shadow ray from the offset origin, with a range "
                       "that ends at the light: blockers beyond the light cast no shadow");
@@ -545,9 +557,10 @@ TEST_CASE_TEMPLATE("hidden: small blockers near the surface still cast shadows",
         const T size = std::exp(rnd.uniform(std::log(T(1e-3)), std::log(T(1))));
         const vec3<T> p(rnd.uniform(-size, size), 0, rnd.uniform(-size, size));
         const sphere<T> ball{p + vec3<T>(0, T(0.05) * size, 0), T(0.01) * size, 0};
-        const ch06::occlusion_test<T> by_ball = [&](const ray<T>& r, const interval<T>& range) {
+        const auto hits_ball = [&](const ray<T>& r, const interval<T>& range) {
             return ch02::intersect_sphere(ball, r, range).has_value();
         };
+        const ch06::occlusion_test<T> by_ball = rt::test::served_occlusion<T>{hits_ball};
         const color c = ch06::shade(p, vec3<T>(0, 1, 0), vec3<T>(0, 1, 1), glossy(color(0.5f), color(0), 8),
                                     {{convert<double>(vec3<T>(p + vec3<T>(0, size, 0))), color(1)}}, color(0), by_ball);
         ok = c.r == 0.0f;
@@ -577,10 +590,11 @@ TEST_CASE_TEMPLATE("hidden: only the blocked lights lose their light", T, RT_SCA
         // Block exactly one light: the one whose shadow ray heads for it.
         const size_t blocked = size_t(i % 3);
         const vec3<T> target = convert<T>(lights[blocked].position);
-        const ch06::occlusion_test<T> blocks_one = [&](const ray<T>& r, const interval<T>& range) {
+        const auto heads_for_target = [&](const ray<T>& r, const interval<T>& range) {
             const vec3<T> end = r.at(range.max);
             return ld_len(vec3<T>(end - target)) <= 1e-3L * (1 + ld_len(target));
         };
+        const ch06::occlusion_test<T> blocks_one = rt::test::served_occlusion<T>{heads_for_target};
         std::vector<point_light> open;
         for (size_t k = 0; k < lights.size(); ++k)
             if (k != blocked) open.push_back(lights[k]);

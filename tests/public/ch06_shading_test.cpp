@@ -8,6 +8,7 @@
 #include "06-shading/shading.hpp"
 #include "02-sphere/sphere.hpp"
 
+#include "rpc/served.hpp"
 #include "test_support.hpp"
 
 #include <cmath>
@@ -41,17 +42,20 @@ point_light light_at(vec3d p, float intensity) {
     return point_light{p, color(intensity)};
 }
 
-// An occlusion test over one sphere, with chapter 02's intersection.
+// An occlusion test over one sphere, with chapter 02's intersection. It is a
+// served one (tests/support/rpc/served.hpp): under the grader, your shade()
+// gets a table of the shadow rays it may ask about (your own shadow_ray() for
+// each light) with this test's answer to each; asking about another ray throws.
 template <class T>
 ch06::occlusion_test<T> blocked_by(const sphere<T>& blocker) {
-    return [blocker](const ray<T>& r, const interval<T>& range) {
+    return rt::test::served_occlusion<T>{[blocker](const ray<T>& r, const interval<T>& range) {
         return ch02::intersect_sphere(blocker, r, range).has_value();
-    };
+    }};
 }
 
 template <class T>
 ch06::occlusion_test<T> nothing_blocks() {
-    return [](const ray<T>&, const interval<T>&) { return false; };
+    return rt::test::nothing_blocks<T>();
 }
 
 // Shoots a grid of camera rays from `eye` at sphere s, and for every hit the
@@ -124,7 +128,7 @@ std::string shade_diagnosis() {
     m.specular = color(0.0f);
     const auto lit = [&](double height) {
         return ch06::shade(p, n, eye, m, {point_light{{0, height, 0}, color(4.0f)}}, color(0),
-                           ch06::occlusion_test<T>([](const ray<T>&, const interval<T>&) { return false; }))
+                           nothing_blocks<T>())
             .r;
     };
     const float at_1 = lit(1), at_2 = lit(2);

@@ -1,5 +1,8 @@
 // Chapter 06's exercise functions for the judge and the runner (table.hpp explains the two halves).
-// The occlusion test is a callback: the student's shade() calls it in the runner, it runs in the judge.
+// The occlusion test travels as a table: the shadow queries shade() may ask (the student's own
+// shadow_ray for every light, on both sides of the surface) with the test's answer to each, answered in
+// the runner (served.hpp).
+#include "served_wire.hpp"
 #include "table.hpp"
 #include "06-shading/shading.hpp"
 
@@ -29,10 +32,36 @@ template <class T>
 shadow_query<T> shadow_ray(const vec3<T>& point, const vec3<T>& normal, const vec3<T>& light_position) {
     return RT_RPC_FORWARD(shadow_ray, point, normal, light_position);
 }
+#if defined(RT_RPC_JUDGE)
+// The occlusion table for one call of shade(): asks the runner for shadow_ray() of every light on
+// both sides of the surface (a light or point shadow_ray refuses is left out: shade() cannot ask it).
+template <class T>
+test::occlusion_table<T> occlusion_for(const occlusion_test<T>& occluded, const vec3<T>& point, const vec3<T>& normal,
+                                       const std::vector<point_light>& lights) {
+    const auto* served = occluded.template target<test::served_occlusion<T>>();
+    if (served == nullptr)
+        throw std::logic_error("a test gave shade() an occlusion test that is not rt::test::served_occlusion "
+                               "(tests/support/rpc/served.hpp): the grader cannot answer it in the runner");
+    std::vector<std::pair<ray<T>, interval<T>>> questions;
+    for (const point_light& light : lights)
+        for (const vec3<T>& n : {normal, -normal}) {
+            try {
+                const shadow_query<T> q = shadow_ray(point, n, convert<T>(light.position));
+                questions.emplace_back(q.r, q.range);
+            } catch (const rpc::runner_gone&) {
+                throw;
+            } catch (const std::exception&) {
+            }
+        }
+    return served->table_for(questions);
+}
+#endif
+
 template <class T>
 color shade(const vec3<T>& point, const vec3<T>& normal, const vec3<T>& to_viewer, const material& m,
             const std::vector<point_light>& lights, const color& ambient, const occlusion_test<T>& occluded) {
-    return RT_RPC_FORWARD(shade, point, normal, to_viewer, m, lights, ambient, occluded);
+    return RT_RPC_FORWARD_AS(color, shade, point, normal, to_viewer, m, lights, ambient,
+                             occlusion_for(occluded, point, normal, lights));
 }
 }  // namespace rt::ch06
 #endif

@@ -28,6 +28,7 @@
 #include <cstring>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <optional>
 #include <string>
 #include <utility>
@@ -242,5 +243,93 @@ struct served_table {
         return served_objects<T>::fill(server->answer(i, r, range), i, hit);
     }
 };
+
+// ---- chapter 06: the occlusion test -------------------------------------------------------------------
+//
+// shade() asks occluded(q.r, q.range) with q = shadow_ray(point, n, light) for each light above the
+// surface (shading.hpp). The judge knows the point, the normal and the lights of the call, so it asks
+// the student's own shadow_ray for every light (on both sides of the surface: which side shade() takes
+// is the student's arithmetic) and sends each query with the answer the test's occlusion test gives it.
+// The runner answers a question that is exactly one of these; any other question, or one beyond the
+// test's budget, throws std::logic_error out of shade() (a bool answer has no room for a fault record).
+
+// One question shade() may ask and the test's answer to it.
+template <class T>
+struct shadow_answer {
+    ray<T> r{};
+    interval<T> range{};
+    bool blocked = false;
+};
+
+template <class T>
+struct occlusion_table {
+    std::vector<shadow_answer<T>> answers;
+    long budget = -1;  // questions answered; -1: no limit
+};
+
+inline const char* occlusion_over_budget =
+    "shade asked the occlusion test more often than it should (a light below the surface, or at the point, "
+    "needs no shadow ray)";
+inline const char* occlusion_other_question =
+    "shade asked the occlusion test about another ray or range than shadow_ray(point, n, light) gives for "
+    "one of the lights";
+
+template <class T>
+class occlusion_server {
+public:
+    explicit occlusion_server(occlusion_table<T> table) : table_(std::move(table)) {}
+
+    bool answer(const ray<T>& r, const interval<T>& range) {
+        if (table_.budget >= 0 && calls_++ >= table_.budget) throw std::logic_error(occlusion_over_budget);
+        for (const shadow_answer<T>& a : table_.answers)
+            if (std::memcmp(&a.r, &r, sizeof r) == 0 && std::memcmp(&a.range.min, &range.min, sizeof(T)) == 0 &&
+                std::memcmp(&a.range.max, &range.max, sizeof(T)) == 0)
+                return a.blocked;
+        throw std::logic_error(occlusion_other_question);
+    }
+
+private:
+    occlusion_table<T> table_;
+    long calls_ = 0;
+};
+
+// The callable a test gives shade() as its occlusion test: `blocked` is the test's own (instructor code,
+// in the judge or in the test's own process). In the test's own process it is asked directly, with the
+// same budget.
+template <class T>
+struct served_occlusion {
+    std::function<bool(const ray<T>& r, const interval<T>& range)> blocked;
+    long budget = -1;
+    std::shared_ptr<long> calls = std::make_shared<long>(0);
+
+    // The judge's table for the questions shade() may ask in this call.
+    occlusion_table<T> table_for(const std::vector<std::pair<ray<T>, interval<T>>>& questions) const {
+        occlusion_table<T> table;
+        table.budget = budget;
+        for (const auto& [r, range] : questions) table.answers.push_back({r, range, blocked(r, range)});
+        return table;
+    }
+
+    bool operator()(const ray<T>& r, const interval<T>& range) const {
+        if (budget >= 0 && (*calls)++ >= budget) throw std::logic_error(occlusion_over_budget);
+        return blocked(r, range);
+    }
+};
+
+template <class T>
+struct served_occlusion_table {
+    std::shared_ptr<occlusion_server<T>> server;
+    bool operator()(const ray<T>& r, const interval<T>& range) const { return server->answer(r, range); }
+};
+
+// Nothing blocks, everything blocks: the two plain occlusion tests.
+template <class T>
+served_occlusion<T> nothing_blocks() {
+    return {[](const ray<T>&, const interval<T>&) { return false; }};
+}
+template <class T>
+served_occlusion<T> everything_blocks() {
+    return {[](const ray<T>&, const interval<T>&) { return true; }};
+}
 
 }  // namespace rt::test

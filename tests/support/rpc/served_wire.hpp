@@ -20,6 +20,14 @@ template <class T, class F>
 void fields(hit_table<T>& x, F&& f) {
     f(x.r, x.count, x.owner, x.records, x.budget, x.check_calls, x.expected);
 }
+template <class T, class F>
+void fields(shadow_answer<T>& x, F&& f) {
+    f(x.r, x.range, x.blocked);
+}
+template <class T, class F>
+void fields(occlusion_table<T>& x, F&& f) {
+    f(x.answers, x.budget);
+}
 }  // namespace rt::test
 
 namespace rt::rpc {
@@ -51,6 +59,14 @@ void get(reader& r, std::function<std::optional<hit_record<T>>(int, const ray<T>
 template <class T>
 void get(reader& r, std::function<bool(int, const ray<T>&, const interval<T>&, hit_record<T>&)>& f) {
     get_served<T>(r, f);
+}
+
+// Chapter 06's occlusion test: the runner answers from the judge's table (served.hpp).
+template <class T>
+void get(reader& r, std::function<bool(const ray<T>&, const interval<T>&)>& f) {
+    test::occlusion_table<T> table;
+    get(r, table);
+    f = test::served_occlusion_table<T>{std::make_shared<test::occlusion_server<T>>(std::move(table))};
 }
 
 }  // namespace rt::rpc
