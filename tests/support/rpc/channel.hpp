@@ -1,10 +1,9 @@
 // channel.hpp — the messages between the judge and the runner, and the exceptions that cross.
 //
 // One call: the judge sends `call` (the function's name and its arguments); the runner runs the student's
-// function and sends `answer` (the result) or `threw` (the exception). While a call is outstanding the
-// runner may send `call_back` (a callback argument called by the student's code, e.g. chapter 03's
-// intersector); the judge runs it and sends `call_back_answer` or `threw`, and keeps waiting. Before its
-// first call to a runner the judge sends `same_cpu`: the CPU the two share (judge.cpp, share_cpu).
+// function and sends `answer` (the result) or `threw` (the exception). Nothing else goes from the runner
+// to the judge: a callback the student's code calls is answered inside the runner (served.hpp). Before
+// its first call to a runner the judge sends `same_cpu`: the CPU the two share (judge.cpp, share_cpu).
 #pragma once
 
 #include "wire.hpp"
@@ -19,10 +18,8 @@ namespace rt::rpc {
 enum class kind : std::uint8_t {
     call = 1,             // judge -> runner: function name, arguments
     answer = 2,           // runner -> judge: the result
-    threw = 3,            // either way: exception kind, message
-    call_back = 4,        // runner -> judge: callback number, arguments
-    call_back_answer = 5, // judge -> runner: the callback's result
-    same_cpu = 6          // judge -> runner: run on this CPU (a 32-bit number), the judge's own; no answer
+    threw = 3,            // runner -> judge: exception kind, message
+    same_cpu = 4          // judge -> runner: run on this CPU (a 32-bit number), the judge's own; no answer
 };
 
 // The exceptions that cross: tests check some of their types (std::invalid_argument for bad input).

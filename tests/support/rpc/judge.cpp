@@ -85,11 +85,6 @@ char receive_reply(int control, int& fd) {
     }
 }
 
-std::vector<erased_callback>& callbacks() {
-    static std::vector<erased_callback> kept;
-    return kept;
-}
-
 // "ch01::intersect_unit_sphere<float>" -> "intersect_unit_sphere", as the student wrote it.
 std::string plain_name(const std::string& function) {
     std::string name = function.substr(0, function.find('<'));
@@ -207,14 +202,6 @@ void begin_case(const std::string& name) {
 
 bool runner_broke_in_case() { return runner().broke_in_case; }
 
-callback_scope::callback_scope() : mark_(callbacks().size()) {}
-callback_scope::~callback_scope() { callbacks().resize(mark_); }
-
-std::uint32_t judge_keep_callback(erased_callback f) {
-    callbacks().push_back(std::move(f));
-    return static_cast<std::uint32_t>(callbacks().size() - 1);
-}
-
 std::string call_remote(const std::string& function, const std::string& arguments) {
     connection& c = runner();
     if (!c.broken.empty()) throw runner_gone(c.broken);
@@ -225,33 +212,10 @@ std::string call_remote(const std::string& function, const std::string& argument
         put(call, function);
         call.raw(arguments.data(), arguments.size());
         ch.send(kind::call, call.bytes());
-        for (;;) {
-            const message m = ch.receive();
-            if (m.what == kind::answer) return m.bytes;
-            if (m.what == kind::threw) {
-                throw_described(m.bytes, [&](exception_kind k, const std::string& t) { return retell(function, k, t); });
-            }
-            if (m.what != kind::call_back) throw protocol_error("a message the judge did not ask for");
-            reader r(m.bytes);
-            std::uint32_t id = 0;
-            get(r, id);
-            if (id >= callbacks().size()) throw protocol_error("a callback that was never given");
-            std::string rest(m.bytes.substr(4));
-            reader in(rest);
-            writer out;
-            try {
-                callbacks()[id](in, out);
-                if (in.remaining() != 0) throw protocol_error("a callback's arguments longer than expected");
-            } catch (const protocol_error&) {
-                throw;
-            } catch (const runner_gone&) {
-                throw;
-            } catch (...) {
-                ch.send(kind::threw, describe_current_exception());
-                continue;
-            }
-            ch.send(kind::call_back_answer, out.bytes());
-        }
+        const message m = ch.receive();
+        if (m.what == kind::answer) return m.bytes;
+        if (m.what != kind::threw) throw protocol_error("a message the judge did not ask for");
+        throw_described(m.bytes, [&](exception_kind k, const std::string& t) { return retell(function, k, t); });
     } catch (const protocol_error& e) {
         gone(c, function, e.what());
     }

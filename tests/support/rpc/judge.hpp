@@ -35,19 +35,7 @@ void begin_case(const std::string& name);
 // said (a CHECK_THROWS must not count the runner's crash as the exception it expected).
 bool runner_broke_in_case();
 
-// Callbacks given during one call live exactly as long as that call.
-class callback_scope {
-public:
-    callback_scope();
-    ~callback_scope();
-    callback_scope(const callback_scope&) = delete;
-    callback_scope& operator=(const callback_scope&) = delete;
-
-private:
-    std::size_t mark_;
-};
-
-// Sends one call and serves the runner's callbacks until the answer comes; returns the answer's bytes.
+// Sends one call and waits for its answer; returns the answer's bytes.
 std::string call_remote(const std::string& function, const std::string& arguments);
 
 template <class T>
@@ -57,7 +45,6 @@ std::string call_name(const char* function) {
 
 template <class R, class... A>
 R forward(const std::string& function, const A&... arguments) {
-    callback_scope scope;
     writer w;
     (put(w, arguments), ...);
     const std::string answer = call_remote(function, w.bytes());

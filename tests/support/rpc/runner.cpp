@@ -63,23 +63,6 @@ bool serve_erased(const std::string& function, handler h) {
     return true;
 }
 
-// Called by a callback argument inside the student's code: asks the judge, serving any call the judge
-// makes meanwhile, until the callback's answer comes.
-std::string runner_call_back(std::uint32_t id, const std::string& arguments) {
-    channel ch(judge_fd);
-    writer w;
-    put(w, id);
-    w.raw(arguments.data(), arguments.size());
-    ch.send(kind::call_back, w.bytes());
-    for (;;) {
-        const message m = ch.receive();
-        if (m.what == kind::call_back_answer) return m.bytes;
-        if (m.what == kind::threw) throw_described(m.bytes, nullptr);
-        if (m.what != kind::call) throw protocol_error("a message the runner did not expect");
-        answer(ch, m.bytes);
-    }
-}
-
 }  // namespace rt::rpc
 
 int main(int argc, char** argv) {

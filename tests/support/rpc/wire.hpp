@@ -155,59 +155,9 @@ void get(reader& r, std::vector<T>& v) {
     for (T& x : v) get(r, x);
 }
 
-// --- callbacks (chapter 03's intersector, chapter 06's occlusion test) -------------------------------
-// A std::function argument travels as a number. The judge keeps the function and answers when the
-// runner calls that number (judge.cpp); the runner gets a function that asks the judge (runner.cpp).
-using erased_callback = std::function<void(reader& arguments, writer& result)>;
-std::uint32_t judge_keep_callback(erased_callback f);                       // judge side
-std::string runner_call_back(std::uint32_t id, const std::string& arguments);  // runner side
-
-// A callback parameter that is a non-const reference is an output (chapter 08's leaf intersector fills a
-// hit_record&): its new value travels back after the result.
-template <class A>
-inline constexpr bool is_output = std::is_lvalue_reference_v<A> && !std::is_const_v<std::remove_reference_t<A>>;
-
-template <class A, class V>
-void put_if_output(writer& w, const V& value) {
-    if constexpr (is_output<A>) put(w, value);
-}
-template <class A, class V>
-void get_if_output(reader& r, V& value) {
-    if constexpr (is_output<A>) get(r, value);
-}
-template <class... A, class Tuple, std::size_t... I>
-void put_outputs(writer& w, const Tuple& values, std::index_sequence<I...>) {
-    (put_if_output<A>(w, std::get<I>(values)), ...);
-}
-template <class... A, class Tuple, std::size_t... I>
-void get_outputs(reader& r, Tuple& values, std::index_sequence<I...>) {
-    (get_if_output<A>(r, std::get<I>(values)), ...);
-}
-
-template <class R, class... A>
-void put(writer& w, const std::function<R(A...)>& f) {
-    put(w, judge_keep_callback([&f](reader& in, writer& out) {
-        std::tuple<std::decay_t<A>...> arguments;
-        std::apply([&in](auto&... a) { (get(in, a), ...); }, arguments);
-        put(out, std::apply(f, arguments));
-        put_outputs<A...>(out, arguments, std::index_sequence_for<A...>{});
-    }));
-}
-template <class R, class... A>
-void get(reader& r, std::function<R(A...)>& f) {
-    std::uint32_t id = 0;
-    get(r, id);
-    f = [id](A... a) {
-        writer arguments;
-        (put(arguments, a), ...);
-        const std::string answer = runner_call_back(id, arguments.bytes());
-        reader in(answer);
-        R result{};
-        get(in, result);
-        std::tuple<A&...> parameters(a...);
-        get_outputs<A...>(in, parameters, std::index_sequence_for<A...>{});
-        return result;
-    };
-}
+// --- callbacks ------------------------------------------------------------------------------------------
+// A std::function argument (chapter 03's intersector, 06's occlusion test, 08's leaf test) has no put():
+// it never crosses as code. The judge's stub sends the data the test's callback stands for, and the
+// runner answers the student's calls from that data (served.hpp, served_wire.hpp).
 
 }  // namespace rt::rpc
