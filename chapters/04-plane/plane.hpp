@@ -40,6 +40,10 @@ namespace rt::ch04 {
 //   a hit at an enormous t, or, for a ray lying in the plane, at a point of
 //   the ray, which is on the plane. Deciding those exactly is chapter 07's
 //   subject; the tests do not ask it here.)
+//   A direction with tiny, even subnormal, components is not zero: the
+//   reference solution scales it by a power of two before taking d.n (t
+//   scales back exactly), so its d.n keeps its digits. The tests do not ask
+//   it; without the scaling such a ray may be a miss or a far-off t.
 template <class T>
 std::optional<hit_record<T>> intersect_plane(const plane<T>& p, const ray<T>& r, const interval<T>& range);
 

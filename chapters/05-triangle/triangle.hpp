@@ -55,7 +55,9 @@ vec3<T> barycentric(const triangle<T>& tri, const vec3<T>& p);
 // underflows T (edges of 1e10 or 1e-12 in float, 1e80 or 1e-80 in double),
 // gives the same answers as the same triangle at unit size: scale the edges
 // by a power of two before multiplying them (README, "Very small and very
-// large triangles").
+// large triangles"). A direction with tiny, even subnormal, components is
+// not zero: the reference solution scales it the same way before taking
+// d.n (t scales back exactly); the tests do not ask it.
 template <class T>
 std::optional<hit_record<T>> intersect_triangle(const triangle<T>& tri, const ray<T>& r, const interval<T>& range);
 

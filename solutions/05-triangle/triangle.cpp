@@ -69,11 +69,15 @@ std::optional<hit_record<T>> intersect_triangle(const triangle<T>& tri, const ra
     // Step 1: the triangle's plane, through a with normal n = (b - a) x (c - a).
     const int e = size_exponent(tri.b - tri.a, tri.c - tri.a);
     const vec3<T> n = cross(scaled_down(tri.b - tri.a, e), scaled_down(tri.c - tri.a, e));
-    const T facing = dot(r.direction, n);
+    // A direction with tiny (even subnormal) components: scaled the same way
+    // (by a power of two, exact), so d . n keeps its digits; o + t' (2^-k d)
+    // is o + t d for t = 2^-k t'.
+    const int k = size_exponent(r.direction, r.direction);
+    const T facing = dot(scaled_down(r.direction, k), n);
     // Parallel ray, zero-area triangle (n = 0) or NaN input: a miss.
     if (!(std::fabs(facing) > T(0))) return std::nullopt;
 
-    const T t = dot(tri.a - r.origin, n) / facing;
+    const T t = k == 0 ? dot(tri.a - r.origin, n) / facing : std::ldexp(dot(tri.a - r.origin, n) / facing, -k);
     if (!std::isfinite(t) || !range.contains(t)) return std::nullopt;
 
     // Step 2: is the plane hit inside all three edge half-planes? Points on

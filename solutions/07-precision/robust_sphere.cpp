@@ -145,12 +145,23 @@ std::optional<hit_record<T>> intersect_sphere_robust(const sphere<T>& s, const r
         !std::isfinite(s.radius))
         return std::nullopt;
 
+    // Inputs within a factor 4 of W's largest number (possible only when W is
+    // T, i.e. double data): o - C itself could overflow. Quartering o, C and
+    // the radius first keeps it finite; it is exact except for bits below
+    // 4 times the smallest subnormal, which no sum with such huge numbers keeps.
+    const W top = W(std::numeric_limits<W>::max()) / 4;
+    const int pre = std::max({largest(W(r.origin.x), W(r.origin.y), W(r.origin.z)),
+                              largest(W(s.center.x), W(s.center.y), W(s.center.z)), W(s.radius)}) > top
+                        ? -2
+                        : 0;
+
     // f = o - C exactly, as pairs: an origin 0.01 above a sphere of radius
     // 1e6 keeps its 0.01 although o and C are a million units long.
-    P f[3] = {exact_sum(W(r.origin.x), -W(s.center.x)), exact_sum(W(r.origin.y), -W(s.center.y)),
-              exact_sum(W(r.origin.z), -W(s.center.z))};
+    const auto part = [pre](T x) { return std::ldexp(W(x), pre); };
+    P f[3] = {exact_sum(part(r.origin.x), -part(s.center.x)), exact_sum(part(r.origin.y), -part(s.center.y)),
+              exact_sum(part(r.origin.z), -part(s.center.z))};
     W d[3] = {W(r.direction.x), W(r.direction.y), W(r.direction.z)};
-    W radius = W(s.radius);
+    W radius = part(s.radius);
 
     // Step 0: scale f and the radius together, and d on its own, by powers
     // of two (a sphere of radius 1e-200 or 1e200 in double, a subnormal
@@ -158,10 +169,11 @@ std::optional<hit_record<T>> intersect_sphere_robust(const sphere<T>& s, const r
     // 2^ef f + t' 2^ed d meets the sphere of radius 2^ef r: t = t' 2^(ed - ef).
     const W dmax = largest(d[0], d[1], d[2]);
     if (!(dmax > 0)) return std::nullopt;  // a zero direction meets nothing
-    const int ef = scale_exponent(std::max(largest(f[0].hi, f[1].hi, f[2].hi), radius));
+    const int scale_f = scale_exponent(std::max(largest(f[0].hi, f[1].hi, f[2].hi), radius));
     const int ed = scale_exponent(dmax);
-    for (P& x : f) x = {std::ldexp(x.hi, ef), std::ldexp(x.lo, ef)};
-    radius = std::ldexp(radius, ef);
+    for (P& x : f) x = {std::ldexp(x.hi, scale_f), std::ldexp(x.lo, scale_f)};
+    radius = std::ldexp(radius, scale_f);
+    const int ef = scale_f + pre;  // f and the radius are now 2^ef times the input's
     for (W& x : d) x = std::ldexp(x, ed);
 
     // Step 1: the discriminant through the perpendicular distance. By
@@ -199,9 +211,16 @@ std::optional<hit_record<T>> intersect_sphere_robust(const sphere<T>& s, const r
 
     // Undo the scaling, and round to T once (beyond T's range: infinite,
     // which the range test rejects).
+    // A root within a few ULPs of T's largest number can be computed just
+    // above it (for double data ldexp then gives infinity): within 8 ULPs it
+    // is that largest number, the nearest T to a root that is really there.
     const auto back = [&](W t) {
-        t = std::ldexp(t, ed - ef);
-        return std::fabs(t) <= W(std::numeric_limits<T>::max()) ? T(t) : std::copysign(infinity<T>, T(t));
+        const W t_max = W(std::numeric_limits<T>::max());
+        const W x = std::ldexp(t, ed - ef);
+        if (std::fabs(x) <= t_max) return T(x);
+        const W quarter = std::ldexp(t, ed - ef - 2);  // finite near the top; far beyond it infinite: a miss
+        const bool rounding = std::fabs(quarter) <= (t_max / 4) * (1 + 8 * W(std::numeric_limits<T>::epsilon()));
+        return std::copysign(rounding ? std::numeric_limits<T>::max() : infinity<T>, T(t));
     };
     T t = back(t_near);
     if (!range.contains(t)) {

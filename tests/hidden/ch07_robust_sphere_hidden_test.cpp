@@ -581,6 +581,35 @@ TEST_CASE_TEMPLATE("hidden: spheres at the limits of the format, and subnormal d
     CHECK_MESSAGE(ok_t, "extreme scales: t is off by more than 4 ULPs (undo the scaling: t = t' 2^(ed - ef))");
 }
 
+// Finite inputs next to T's largest number M: o - C is 2M, beyond T, yet
+// every root below is a representable number (dyadic geometry: M, M/2 and
+// powers of two), so the header's 4 ULPs apply.
+TEST_CASE_TEMPLATE("hidden: centres and origins near the largest finite number", T, RT_SCALARS) {
+    const T M = std::numeric_limits<T>::max();
+    // From -M towards a sphere of radius M centred at +M: the near root is M.
+    auto hit = intersect_sphere_robust(sphere<T>{vec3<T>(0, 0, M), M}, ray<T>{vec3<T>(0, 0, -M), vec3<T>(0, 0, 1)},
+                                       ahead<T>());
+    REQUIRE_MESSAGE(hit.has_value(), "o - C overflows T although every input is finite: scale o, C and r down first");
+    CHECK(ulps(hit->t, wide(M)) <= 4);
+    // Radius M/2 centred at +M/2, origin -M/2, direction (1, 0, 0)*2^k: root at M/2 * 2^-k.
+    for (int k : {-3, 0, 5}) {
+        const T h = M / 2;
+        auto got = intersect_sphere_robust(sphere<T>{vec3<T>(h, 0, 0), h},
+                                           ray<T>{vec3<T>(-h, 0, 0), vec3<T>(std::ldexp(T(1), k), 0, 0)}, ahead<T>());
+        if (k < 0) {  // the root M/2 * 2^3 is beyond T: a miss, never infinity
+            CHECK_FALSE(got.has_value());
+            continue;
+        }
+        REQUIRE(got.has_value());
+        CHECK(ulps(got->t, wide(std::ldexp(h, -k))) <= 4);
+    }
+    // From inside, at the centre of a sphere of radius M: the far root M.
+    auto inside = intersect_sphere_robust(sphere<T>{vec3<T>(0, 0, 0), M}, ray<T>{vec3<T>(0, 0, 0), vec3<T>(0, 1, 0)},
+                                          ahead<T>());
+    REQUIRE(inside.has_value());
+    CHECK(ulps(inside->t, wide(M)) <= 4);
+}
+
 TEST_CASE_TEMPLATE("hidden: rays leaving a surface (shadow and reflection rays) keep their few ULPs", T, RT_SCALARS) {
     // Origins on the surface, rounded to T (so a hair inside or outside),
     // leaving it: the far root is ~0 and c = f.f - r^2 is all cancellation.

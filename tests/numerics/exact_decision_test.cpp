@@ -139,6 +139,30 @@ TEST_CASE_TEMPLATE("triangle formulations miss in-plane rays and degenerate tria
                       entry.name << ": a subnormal direction is not a zero direction");
 }
 
+TEST_CASE_TEMPLATE("plane formulations: a normal of any finite length, and subnormal directions, give the exact t", T,
+                   RT_SCALARS) {
+    // The normal's length cancels from t; 2^(max_exponent - 2) makes (q - o).n overflow unless it is scaled.
+    const int top = std::numeric_limits<T>::max_exponent - 2, low = std::numeric_limits<T>::min_exponent;
+    for (const fm::plane_formulation& f : fm::plane_formulations()) {
+        CAPTURE(f.name);
+        for (int e : {top, -top, low - 20}) {
+            const T big = std::ldexp(T(1), e);
+            const plane<T> p{vec3<T>(4, 0, 0), vec3<T>(big, big, 0)};
+            auto hit = f.fn<T>()(ray<T>{vec3<T>(0, 0, 0), vec3<T>(1, 0, 0)}, p, interval<T>{T(0), infinity<T>});
+            REQUIRE(hit.has_value());
+            CHECK(hit->t == T(4));
+            CHECK(std::isfinite(hit->point.x));
+        }
+        // A subnormal direction 2^(low - 10) (1, 1/2, 1) towards the plane y + z = 2^-40.
+        const plane<T> p{vec3<T>(0, 0, std::ldexp(T(1), -40)), vec3<T>(0, 1, 1)};
+        const vec3<T> d(std::ldexp(T(1), low - 10), std::ldexp(T(1), low - 11), std::ldexp(T(1), low - 10));
+        // d.n = 3 * 2^(low - 11): the exact t = 2^-40 / d.n = 2^(-29 - low) / 3, rounded once.
+        auto hit = f.fn<T>()(ray<T>{vec3<T>(0, 0, 0), d}, p, interval<T>{T(0), infinity<T>});
+        REQUIRE(hit.has_value());
+        CHECK(hit->t == std::ldexp(T(1), -29 - low) / T(3));
+    }
+}
+
 TEST_CASE_TEMPLATE("exact_orientation_sign agrees with integer arithmetic on small integer cases", T, RT_SCALARS) {
     std::mt19937 rng(7);
     std::uniform_int_distribution<int> k(-20, 20);
@@ -276,5 +300,30 @@ TEST_CASE_TEMPLATE("render triangle kernel: in-plane rays and degenerate triangl
     }
     CHECK(hits > 1000);
     CHECK(differ == 0);
+}
+TEST_CASE_TEMPLATE("render triangle kernel: a non-zero subnormal direction is a direction (dyadic cases, exact t)", T,
+                   RT_SCALARS) {
+    // The triangle (-1, -1, h), (3, -1, h), (-1, 3, h) with h = 2^-60, seen from the origin along
+    // 2^(low - k) (2^-2, 2^-3, 1) (subnormal components): it crosses z = h at t = 2^(-60 - low + k),
+    // at the point (2^-62, 2^-63, h), inside. Every quantity is a power of two, so t is exact.
+    const int low = std::numeric_limits<T>::min_exponent;
+    const T h = std::ldexp(T(1), -60);
+    const vec3<T> a(-1, -1, h), e1(4, 0, 0), e2(0, 4, 0);
+    for (int k : {10, 14, std::numeric_limits<T>::digits - 3}) {
+        CAPTURE(k);
+        const vec3<T> d(std::ldexp(T(1), low - k - 2), std::ldexp(T(1), low - k - 3), std::ldexp(T(1), low - k));
+        const T want = std::ldexp(T(1), -60 - low + k);
+        REQUIRE(d.x > T(0));
+        REQUIRE(std::isfinite(want));
+        const T got = render_kernels::triangle_lane(a, e1, e2, ray<T>{vec3<T>(0, 0, 0), d}, T(0));
+        CHECK(got == want);
+        // Pointing away: a miss, never a NaN.
+        CHECK(render_kernels::triangle_lane(a, e1, e2, ray<T>{vec3<T>(0, 0, 0), -d}, T(0)) == infinity<T>);
+        // Parallel to the triangle (no z component): a miss.
+        CHECK(render_kernels::triangle_lane(a, e1, e2, ray<T>{vec3<T>(0, 0, 0), vec3<T>(d.x, d.y, 0)}, T(0)) ==
+              infinity<T>);
+        // The plane kernel agrees on the triangle's plane.
+        CHECK(render_kernels::plane_lane(a, vec3<T>(0, 0, 1), ray<T>{vec3<T>(0, 0, 0), d}, T(0)) == want);
+    }
 }
 #endif

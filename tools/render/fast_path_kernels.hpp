@@ -46,10 +46,13 @@ template <class T>
 }
 
 // The same, deciding d.n = 0 exactly: for the lanes plane_t was unsure of.
+// A direction so small that d.n underflows (non-zero subnormal components)
+// is scaled by a power of two first: t = 2^k t' exactly (direction_scale).
 template <class T>
 T plane_t_exact(T num, T nx, T ny, T nz, T dx, T dy, T dz, T tmin) {
     if (formulations::parallel_exactly(vec3<T>(dx, dy, dz), vec3<T>(nx, ny, nz))) return infinity<T>;
-    const T t = num / (nx * dx + ny * dy + nz * dz);
+    const int k = formulations::direction_scale(vec3<T>(dx, dy, dz));
+    const T t = std::ldexp(num / (nx * std::ldexp(dx, k) + ny * std::ldexp(dy, k) + nz * std::ldexp(dz, k)), k);
     return t > tmin ? t : infinity<T>;
 }
 
@@ -84,13 +87,21 @@ template <class T>
 // The same, deciding e1.(d x e2) = 0 (a ray parallel to the triangle's
 // plane or in it, or a degenerate triangle) exactly: for the lanes
 // triangle_t was unsure of.
+// A non-zero direction too small for its products to stay normal (the lane
+// was sent here by direction_max's infinite bound) is scaled by a power of
+// two first: o + t' (2^k d) is o + t d with t = 2^k t', so t scales back
+// exactly and u, v do not change.
 template <class T>
 T triangle_t_exact(T sx, T sy, T sz, T qx, T qy, T qz, T e1x, T e1y, T e1z, T e2x, T e2y, T e2z, T dx, T dy, T dz,
                    T tmin) {
     if (formulations::flat_exactly(vec3<T>(dx, dy, dz), vec3<T>(0), vec3<T>(e1x, e1y, e1z), vec3<T>(e2x, e2y, e2z)))
         return infinity<T>;
+    const int k = formulations::direction_scale(vec3<T>(dx, dy, dz));
     int ignored = 0;
-    return triangle_t(sx, sy, sz, qx, qy, qz, e1x, e1y, e1z, e2x, e2y, e2z, dx, dy, dz, tmin, T(-1), ignored);
+    const T t = triangle_t(sx, sy, sz, qx, qy, qz, e1x, e1y, e1z, e2x, e2y, e2z, std::ldexp(dx, k), std::ldexp(dy, k),
+                           std::ldexp(dz, k), -infinity<T>, T(-1), ignored);
+    const T back = std::ldexp(t, k);  // infinity (a miss) stays infinity
+    return back > tmin ? back : infinity<T>;
 }
 
 // The absolute part of the determinant's bound: a product of three numbers
@@ -100,10 +111,18 @@ inline T flat_tiny() {
     return T(16) * std::numeric_limits<T>::denorm_min();
 }
 
-// max |d_i|, the ray's part of the determinant's bound.
+// max |d_i|, the ray's part of the determinant's bound; infinite for a
+// non-zero direction so small that the lane's products would underflow
+// (subnormal components: the rounded u, v, t would be meaningless), or so
+// large that they could overflow (exact_sign.hpp's direction_scale). With an
+// infinite bound every lane of that ray is "unsure", and triangle_t_exact
+// answers it on the direction scaled by a power of two. One compare per ray,
+// none per triangle. (A zero direction keeps d_max = 0: the determinant is 0
+// and the lane misses.)
 template <class T>
 inline T direction_max(T dx, T dy, T dz) {
-    return std::max(std::max(std::fabs(dx), std::fabs(dy)), std::fabs(dz));
+    const T m = std::max(std::max(std::fabs(dx), std::fabs(dy)), std::fabs(dz));
+    return formulations::direction_scale(vec3<T>(dx, dy, dz)) != 0 ? infinity<T> : m;
 }
 
 }  // namespace rt::render_tool

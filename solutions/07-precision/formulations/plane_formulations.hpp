@@ -12,7 +12,8 @@
 // for an exactly parallel ray, and dividing by it would give a false hit at
 // an enormous t. A direction so small that d.n would underflow (a
 // subnormal, but non-zero, direction) is first scaled by a power of two;
-// t scales back exactly.
+// t scales back exactly. So is a normal of any finite length (its length
+// cancels from t).
 #pragma once
 
 #include "exact_sign.hpp"
@@ -32,17 +33,29 @@ struct plane_hit {
 };
 
 namespace detail {
+template <class T>
+vec3<T> times_power_of_two(const vec3<T>& v, int k) {
+    return k == 0 ? v : vec3<T>(std::ldexp(v.x, k), std::ldexp(v.y, k), std::ldexp(v.z, k));
+}
+
+// The normal times a power of two that keeps its products with points and
+// directions finite and normal (a normal of length 1e30 or 1e-30 in float):
+// the length of n cancels from t, so only its direction matters.
+template <class T>
+vec3<T> comfortable_normal(const plane<T>& p) {
+    return times_power_of_two(p.normal, direction_scale(p.normal));
+}
+
 // t = (q - o).n / d.n, or NaN when d.n is exactly 0 (parallel or in the
 // plane; NaN fails every range test).
 template <class T>
 T plane_t(const ray<T>& ray_, const plane<T>& p) {
     if (parallel_exactly(ray_.direction, p.normal)) return std::numeric_limits<T>::quiet_NaN();
+    const vec3<T> n = comfortable_normal(p);
     const int k = direction_scale(ray_.direction);
-    if (k == 0) return dot(p.point - ray_.origin, p.normal) / dot(ray_.direction, p.normal);
-    const vec3<T>& d = ray_.direction;
-    const vec3<T> scaled(std::ldexp(d.x, k), std::ldexp(d.y, k), std::ldexp(d.z, k));
+    if (k == 0) return dot(p.point - ray_.origin, n) / dot(ray_.direction, n);
     // o + t' (2^k d) is the same point as o + t d when t = 2^k t'.
-    return std::ldexp(dot(p.point - ray_.origin, p.normal) / dot(scaled, p.normal), k);
+    return std::ldexp(dot(p.point - ray_.origin, n) / dot(times_power_of_two(ray_.direction, k), n), k);
 }
 }  // namespace detail
 
@@ -63,8 +76,9 @@ std::optional<plane_hit<T>> plane_snapped(const ray<T>& ray_, const plane<T>& p,
     T t = detail::plane_t(ray_, p);
     if (!range.contains(t)) return std::nullopt;
     vec3<T> x = ray_.at(t);
-    T off = dot(x - p.point, p.normal) / dot(p.normal, p.normal);
-    return plane_hit<T>{t, x - off * p.normal};
+    const vec3<T> n = detail::comfortable_normal(p);
+    T off = dot(x - p.point, n) / dot(n, n);
+    return plane_hit<T>{t, x - off * n};
 }
 
 }  // namespace rt::formulations
