@@ -77,28 +77,32 @@ class Outcome:
 class Stopper:
     """Lets another thread end a run before its wall-clock limit (the grader's
     time limit per test case, for a runner that serves many cases). The run
-    then counts as timed out."""
+    then counts as timed out. It ends the whole run, as the run's own end
+    does (run() hands it the way): killing the process group alone missed a
+    runner that had moved itself into another group of the grader's session
+    (setpgid to the grader's own group, fallback by user), and the grading
+    then waited for the chapter's whole budget."""
 
     def __init__(self):
         self._lock = threading.Lock()
-        self._pgid = None
+        self._kill = None
         self.stopped = False
 
-    def _started(self, pgid):
+    def _started(self, kill):
         with self._lock:
-            self._pgid = pgid
+            self._kill = kill
             if self.stopped:
-                _kill_group(pgid)
+                kill()
 
     def _ended(self):
         with self._lock:
-            self._pgid = None
+            self._kill = None
 
     def stop(self):
         with self._lock:
             self.stopped = True
-            if self._pgid is not None:
-                _kill_group(self._pgid)
+            if self._kill is not None:
+                self._kill()
 
 
 def _kill_group(pgid):
@@ -250,6 +254,19 @@ def _stop_and_kill(find):
             os.kill(p, signal.SIGCONT)
         except OSError:
             pass
+
+
+def _kill_run(pgid, iso, user, token, cgroup):
+    """Kills every process of a run that is still going (a Stopper's work): its process group,
+    its cgroups, and in the fallbacks every process of its user (or with its token)."""
+    _kill_group(pgid)
+    if cgroup:
+        iso.cgroup.kill(cgroup)
+    if iso.mode != isolation.NAMESPACES:
+        if user is not None:
+            _kill_as(*user)
+        else:
+            _stop_and_kill(lambda: _processes_with_token(token))
 
 
 def _end_run(pgid, iso, user, token, cgroup):
@@ -528,7 +545,7 @@ def run(argv, *, limits, log_path, user=None, inputs=(), scratch=None, env_extra
             os.close(seccomp_fd)
             seccomp_fd = None
         if stopper is not None:
-            stopper._started(proc.pid)
+            stopper._started(lambda: _kill_run(proc.pid, iso, user, token, cgroup))
         timed_out = False
         try:
             proc.wait(timeout=limits.wall_seconds)
