@@ -145,6 +145,9 @@ class InstructorNote(ToolTest):
         self.assertEqual(grading.suspicious_words("pid_t p = vfork(); // forking"), ["vfork"])
         self.assertEqual(grading.suspicious_words('#include "/dev/zero"\nsystem("ls");'),
                          ["system(", '#include "/'])
+        # a closest_hit that reads the served callback's table instead of calling it
+        self.assertEqual(grading.suspicious_words("f.target<rt::test::served_table<T>>()"),
+                         ["rt::test", "served_table"])
 
     def test_no_solution_is_flagged_for_part_of_a_name(self):
         from rtgrader import grading
