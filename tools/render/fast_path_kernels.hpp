@@ -29,6 +29,18 @@ namespace rt::render_tool {
 // within it (rare), the lane is left out here and `unsure` is set, and the
 // caller runs the scalar *_exact version below on the packet, which decides
 // exactly (exact_sign.hpp) and otherwise computes the very same t.
+// "Exactly" is for the shape as fast_path.cpp stores it in T: a plane's
+// normal normalised in double and rounded to T, a triangle's corner a and
+// edges b - a, c - a computed from the corners rounded to T. When that
+// rounding moves the shape (a scene triangle with exactly collinear
+// corners, or a ray exactly in its plane, whose rounded edges are not), the
+// stored shape is decided, and the ray may hit it. Where the edges and the
+// normal are exact in T (integer or dyadic scenes), no such ray hits.
+// Directions: any non-zero finite one, subnormal components included (see
+// direction_max). Triangles whose edge products underflow are not rescaled.
+// The sphere kernels (fast_path.cpp) compute d.d plainly: a subnormal
+// direction there is a miss (the renderer's rays are camera and shadow rays
+// of ordinary length).
 template <class T>
 inline constexpr T half_ulp = std::numeric_limits<T>::epsilon() / 2;
 

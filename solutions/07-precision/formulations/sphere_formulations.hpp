@@ -16,6 +16,14 @@
 // below about 1e-23 in float, 1e-162 in double) is treated as zero: a
 // miss. The compensated and mixed forms scale such a direction by a power
 // of two and answer it like any other.
+// What forms 1 to 5 do not check (they are the textbook formulas, measured
+// as they are): a zero or negative radius is used as given (r^2 makes it a
+// sphere: a hit), and squares outside T's range are not avoided: above
+// about 1e19 in float, 1e154 in double (|f| or r) they overflow and the ray
+// is missed; below about 1e-19 and 1e-154 they underflow and hits are lost
+// or t has few correct digits. Never a NaN answer. The compensated form
+// needs o - C to be finite (coordinates below half of T's largest number);
+// beyond that it misses.
 #pragma once
 
 #include "error_free.hpp"
