@@ -128,6 +128,41 @@ def find_exercise(submission, ch, ex):
                   f"(expected at chapters/{ch['folder']}/{ex}, or {ex} at the top of the submission)")
 
 
+def elf_section_names(data):
+    """The section names of a 64-bit little-endian ELF object (bytes), or None when it is not one
+    that can be read whole."""
+    import struct
+    try:
+        if data[:4] != b"\x7fELF" or data[4] != 2 or data[5] != 1:
+            return None
+        shoff, = struct.unpack_from("<Q", data, 0x28)
+        shentsize, shnum, shstrndx = struct.unpack_from("<HHH", data, 0x3A)
+        if shoff and shnum == 0:                        # extended numbering: the count is in section 0
+            shnum = struct.unpack_from("<Q", data, shoff + 0x20)[0]
+        if shentsize < 0x40 or shnum > 65536 or shoff + shnum * shentsize > len(data):
+            return None
+        headers = [struct.unpack_from("<IIQQQQ", data, shoff + k * shentsize) for k in range(shnum)]
+        names_at, names_size = headers[shstrndx][4], headers[shstrndx][5]
+        names = data[names_at:names_at + names_size]
+        return [names[h[0]:names.find(b"\0", h[0])].decode("latin-1") for h in headers]
+    except (IndexError, struct.error):
+        return None
+
+
+def object_problem(data):
+    """'' when the student's object file may be linked by the grader (root, outside the sandbox),
+    else why not. Sections of link-time optimisation (.gnu.lto_*), which a file can write with
+    inline asm, would make the linker run the compiler's LTO back end on the student's bytes,
+    as root: refused, like an object the grader cannot read."""
+    names = elf_section_names(data)
+    if names is None:
+        return "it is not an ELF object file the grader can read"
+    odd = sorted({n for n in names if n.startswith((".gnu.lto_", ".gnu.debuglto_"))})
+    if odd:
+        return f"it has link-time-optimisation sections ({', '.join(odd[:3])}); remove the asm that makes them"
+    return ""
+
+
 def trim(text, limit):
     text = text.strip()
     if len(text) <= limit:
@@ -314,9 +349,13 @@ class Grader:
                 return None, f"compiling {ex} failed" + (f": the compiler {how}" if how else "") + ":\n" + message
             # The object is copied by root into the build tree: never through a link.
             try:
-                fsutil.write_new(kept, ex + ".o", fsutil.read_regular(obj, limits.file_bytes), 0o600)
+                data = fsutil.read_regular(obj, limits.file_bytes)
             except (OSError, fsutil.Refused):
                 return None, f"compiling {ex} did not produce an object file"
+            problem = object_problem(data)
+            if problem:
+                return None, f"compiling {ex} gave an object file the grader does not link: {problem}"
+            fsutil.write_new(kept, ex + ".o", data, 0o600)
             objects[ex] = os.path.join(kept, ex + ".o")
         return objects, ""
 
