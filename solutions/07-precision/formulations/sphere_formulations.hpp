@@ -304,9 +304,8 @@ std::optional<T> sphere_compensated(const ray<T>& ray_, const sphere<T>& s, cons
 
 namespace detail {
 // The roots of the stable pair, rounded to float once, the near one first:
-// for h < 0 (q > 0) c/q <= q/a, for h >= 0 (q < 0) q/a <= c/q. A ray that
-// meets the sphere ahead of it needs one division, not two (a double
-// division is the slowest step of the test). Needs disc > 0 (so q != 0).
+// for h < 0 (q > 0) c/q <= q/a, for h >= 0 (q < 0) q/a <= c/q. Needs
+// disc > 0 (so q != 0). Used for ranges that start before 0.
 inline std::optional<float> near_root_first(double a, double h, double c, double disc, const interval<float>& range) {
     const double q = -(h + std::copysign(std::sqrt(disc), h));
     const bool c_first = h < 0;
@@ -314,6 +313,35 @@ inline std::optional<float> near_root_first(double a, double h, double c, double
     if (range.contains(near)) return near;
     const float far = to_float(c_first ? q / a : c / q);
     if (range.contains(far)) return far;
+    return std::nullopt;
+}
+
+// The answer for a range that starts at 0 or later (every ray a renderer
+// casts), with one division. Needs disc >= 0.
+//
+// The roots are c/q and q/a with q = -(h + sign(h) sqrt(disc)), and their
+// signs alone say which one can be the answer: q has the sign of -h, and
+// c/q * q/a = c/a has the sign of c.
+//   h < 0, c > 0 (outside, heading in): both ahead, c/q is the nearer;
+//   h < 0, c <= 0 (inside, or on the surface heading in): c/q <= 0 is
+//     behind, q/a is the crossing ahead;
+//   h >= 0 (heading out): q/a <= 0 is behind, c/q is ahead only if c < 0.
+// So the candidate is q/a when h < 0 and c <= 0, and c/q otherwise: a ray
+// leaving a surface from just inside (a refraction ray, or a reflection
+// ray whose origin rounded inside) needs no second division. Only when the
+// nearer root c/q lies before range.min (an origin outside, range.min > 0)
+// can the far root q/a be the answer.
+inline std::optional<float> root_ahead(double a, double h, double c, double disc, const interval<float>& range) {
+    // signbit, not h < 0: copysign gives h = -0 the sign of a negative h.
+    const bool negative_h = std::signbit(h);
+    const double q = -(h + std::copysign(std::sqrt(disc), h));
+    const bool take_far = negative_h && c <= 0;
+    const float t = to_float(take_far ? q / a : c / q);
+    if (range.contains(t)) return t;
+    if (negative_h && c > 0) {
+        const float far = to_float(q / a);
+        if (range.contains(far)) return far;
+    }
     return std::nullopt;
 }
 
@@ -327,6 +355,53 @@ inline double_word<double> cross_component(float o1, float o2, float c1, float c
     return fast_two_sum(s3.hi, (s1.lo + s2.lo) + s3.lo);
 }
 
+// c from exact pieces, for the rare origin that c_near_surface cannot
+// settle (within about 2^-46 of its terms of the surface, or overflowing in
+// float): f = o - C with the error of each difference (two_sum), then
+// exact_c. Out of line and cold: the common path stays small.
+[[gnu::noinline, gnu::cold]] inline double c_from_exact_pieces(const vec3<float>& o, const sphere<float>& s) {
+    const vec3<float>& C = s.center;
+    double_word<double> f[3];
+    for (int j = 0; j < 3; ++j) f[j] = two_sum(double(o[j]), -double(C[j]));
+    return exact_c(f, double_word<double>{double(s.radius) * s.radius, 0});
+}
+
+// c = f.f - r^2 for the origins nearest the surface, where even
+// c_near_surface (below) cannot vouch for its digits (about 15% of the
+// shadow rays leaving a sphere of radius 1e6). It is rebuilt from the
+// floats, where every product is exact:
+//   * each f_j = o_j - C_j is split into two floats, F_j + L_j (two_sum in
+//     float: exact, whatever the exponents);
+//   * with k the axis where |F| is largest,
+//       c = F_i^2 + F_j^2 + 2 F_k L_k + (|F_k| - r)(|F_k| + r)
+//           + (2 F_i + L_i) L_i + (2 F_j + L_j) L_j + L_k^2.
+//     A float times a float is exact in double (48 bits); |F_k| - r is
+//     exact in float (Sterbenz: near the surface |F_k| is within a factor
+//     2 of r) and |F_k| + r in double (26 bits), so their product (50
+//     bits) is exact too. The first four terms are large and cancel: they
+//     are added with two_sum, which loses nothing; the last three are about
+//     2^-23 of them, so their own rounding is far below c.
+// What is left is about 2 rounding errors of c and 2^-74 of the terms, so
+// c is within 2^-26 of itself whenever |c| >= 2^-46 of the terms; only
+// origins closer still (and float overflow) are summed from exact pieces.
+[[gnu::noinline]] inline double c_from_floats(const vec3<float>& o, const sphere<float>& s) {
+    double_word<float> F[3];
+    for (int j = 0; j < 3; ++j) F[j] = two_sum(o[j], -s.center[j]);
+    const float ax = std::fabs(F[0].hi), ay = std::fabs(F[1].hi), az = std::fabs(F[2].hi);
+    const int k = ax >= ay ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2);
+    const int i = k == 2 ? 0 : k + 1, j = i == 2 ? 0 : i + 1;
+    auto square = [](float x) { return double(x) * x; };
+    const float r = s.radius, Fk = std::fabs(F[k].hi);
+    const double pair = double(Fk - r) * (double(Fk) + double(r));
+    const double cross_k = 2.0 * F[k].hi * F[k].lo;
+    const double_word<double> rest = two_sum(square(F[i].hi), square(F[j].hi));
+    const double_word<double> big = two_sum(rest.hi, cross_k);
+    const double small = (2.0 * F[i].hi + F[i].lo) * F[i].lo + (2.0 * F[j].hi + F[j].lo) * F[j].lo + square(F[k].lo);
+    const double c = (big.hi + pair) + ((rest.lo + big.lo) + small);
+    if (std::fabs(c) >= 0x1p-46 * (rest.hi + std::fabs(cross_k) + std::fabs(pair))) return c;  // NaN: false
+    return c_from_exact_pieces(o, s);
+}
+
 // c = f.f - r^2 for an origin near the surface, where the plain sum of
 // squares has cancelled (second stage). With k the axis where |f| is
 // largest,
@@ -337,13 +412,14 @@ inline double_word<double> cross_component(float o1, float o2, float c1, float c
 // one that leaves the largest component out: no branch picks k. What f = o - C
 // lost in double (its two_sum error, lo) enters to first order, 2 f.lo.
 // Each part is off by at most about 2 double rounding errors of its own
-// size; the result is used when those errors stay below 2^-25 of c (1 ULP
-// of the float t at most). Exactly-computed parts (an origin exactly on the
-// surface: c = 0 with no error at all) pass too. Only the rest (origins
-// within about 2^-28 of the surface in units of the farthest coordinate)
-// is summed again from exact pieces (exact_c), unless only the sign of c
-// matters (out_of_range_sign: a c of that sign puts the root c/q outside
-// the range).
+// size (2^-52 of rest + |pair|); the result is used when that stays below
+// 2^-25 of c (1 ULP of the float t at most), i.e. |c| >= 2^-27 (rest +
+// |pair|). Exactly-computed parts (an origin exactly on the surface: c = 0
+// with no error at all) pass too. Only the rest (origins within about 2^-27
+// of the surface in units of the farthest coordinate) is computed again
+// from the floats (c_from_floats), unless only the sign of c matters
+// (out_of_range_sign: a c of that sign puts the root c/q outside the
+// range).
 inline double c_near_surface(const vec3<float>& o, const sphere<float>& s, const vec3<double>& f, double out_of_range_sign) {
     const vec3<float>& C = s.center;
     const double r = s.radius;
@@ -355,10 +431,9 @@ inline double c_near_surface(const vec3<float>& o, const sphere<float>& s, const
     const double pair = (big - r) * (big + r);
     if ((lx == 0) & (ly == 0) & (lz == 0)) {  // f exact: the usual case
         const double c = rest + pair;
-        if (0x1p-28 * (rest + std::fabs(pair)) <= std::fabs(c)) return c;
+        if (0x1p-27 * (rest + std::fabs(pair)) <= std::fabs(c)) return c;
         if (out_of_range_sign * c > 0x1p-49 * (rest + std::fabs(pair))) return c;
-        const double_word<double> fw[3] = {{f.x, 0}, {f.y, 0}, {f.z, 0}};
-        return exact_c_cold(fw, r * r);
+        return c_from_floats(o, s);
     }
     const double lost = 2 * (f.x * lx + f.y * ly + f.z * lz);
     const double c = (rest + lost) + pair;
@@ -366,13 +441,12 @@ inline double c_near_surface(const vec3<float>& o, const sphere<float>& s, const
     // from lost's own rounding, lo.lo (left out) at most (|lx| + |ly| + |lz|)^2.
     const double lo_sum = std::fabs(lx) + std::fabs(ly) + std::fabs(lz);
     const double lo2 = lo_sum * lo_sum;
-    if (0x1p-28 * (rest + std::fabs(pair)) + 0x1p-26 * std::fabs(lost) + 0x1p25 * lo2 <= std::fabs(c)) return c;
+    if (0x1p-27 * (rest + std::fabs(pair)) + 0x1p-26 * std::fabs(lost) + 0x1p25 * lo2 <= std::fabs(c)) return c;
     // Only c's sign matters when it puts the root c/q behind the range (a
     // shadow ray leaving a surface from a hair outside it): then a c whose
     // sign is certain will do.
     if (out_of_range_sign * c > 0x1p-49 * (rest + std::fabs(pair) + std::fabs(lost)) + 2 * lo2) return c;
-    const double_word<double> fw[3] = {{f.x, lx}, {f.y, ly}, {f.z, lz}};
-    return exact_c_cold(fw, r * r);
+    return c_from_floats(o, s);
 }
 
 // A grazing ray: the discriminant cancelled more than 26 of double's 53
@@ -412,28 +486,40 @@ inline double c_near_surface(const vec3<float>& o, const sphere<float>& s, const
     return nearest_in_range(to_float(c / q), to_float(q / av), range);
 }
 
+// The discriminant as a r^2 - |f x d|^2 (Lagrange's identity: |f x d|^2 =
+// a f.f - h^2), which keeps its digits where h^2 - a c cancels (a far
+// sphere, a ray near tangency). It is trusted when it is at least 2^-26 of
+// a r^2 (its rounding error is a few 2^-53 of a r^2), or below -2^-40 a r^2
+// (a certain miss). Anything between is a ray within a hair of tangency:
+// *grazing is set, and the caller decides it in double-double
+// (sphere_grazing). NaN (an infinite direction) is a miss.
+inline double disc_by_cross(const vec3<double>& f, const vec3<double>& d, double a, double r2, bool* grazing) {
+    const vec3<double> g = cross(f, d);
+    const double ar2 = a * r2;
+    const double disc = ar2 - dot(g, g);
+    *grazing = disc < ar2 * 0x1p-26 && disc >= -ar2 * 0x1p-40;
+    return disc;
+}
+
 // Float inputs, double arithmetic: a product of two floats is exact in
 // double and a difference of two floats almost always is, so f, h = f.d and
 // c = f.f - r^2 lose (almost) nothing; the roots are rounded to float once,
 // at the end.
 //
-// The discriminant is h^2 - a c. It cancels only when a c is close to h^2
-// (a far sphere, a grazing ray); then it is computed as a r^2 - |f x d|^2
-// instead. Whenever c < 0 (the origin inside: a sum of two
-// positive terms) or 2 a c <= h^2 (the discriminant at least half of h^2),
-// nothing cancels and h^2 - a c is as good as c: that is the case of rays
-// that start on or near a surface and leave or enter it (shadow,
-// reflection and refraction rays), of rays from inside, and of steep rays to
-// a close ground. Rays that leave a sphere from outside (c > 0, h >= 0) have
-// both roots at or behind the origin: a miss for a range that starts at 0 or
-// later, decided from the signs of c and h alone, with no square root.
-//
-// Two quantities can cancel beyond double's reserve: c (an origin on or near
-// the surface, or 1e-3 above a sphere of radius 1e7: c_near_surface) and
-// the discriminant of a grazing ray (sphere_grazing). Only those rays take a
-// slower path, so the common case costs little more than the plain float
-// form. Always inlined: GCC would otherwise call it, and the call costs as
-// much as a third of the plain float test.
+// Two quantities can cancel beyond double's reserve, and each has its own
+// remedy:
+//   * c, for an origin on or near the surface (a secondary ray, or 1e-3
+//     above a sphere of radius 1e7): c_near_surface;
+//   * the discriminant h^2 - a c, when a c is close to h^2 (a far sphere, a
+//     ray near tangency): a r^2 - |f x d|^2 instead (disc_by_cross), and
+//     double-double for a ray within a hair of tangency (sphere_grazing).
+// Whenever c < 0 (the origin inside: a sum of two positive terms) or
+// 2 a c <= h^2 (an origin near the surface, not near tangency), h^2 - a c
+// does not cancel; that is the path of shadow, reflection and refraction
+// rays. Only rays that need more take a slower path, so the common case
+// costs little more than the plain float form. Always inlined: GCC would
+// otherwise call it, and the call costs as much as a third of the plain
+// float test.
 [[gnu::always_inline]] inline std::optional<float> sphere_in_double(const ray<float>& ray_, const sphere<float>& s,
                                                                     const interval<float>& range) {
     if (!(s.radius > 0)) return std::nullopt;
@@ -442,59 +528,60 @@ inline double c_near_surface(const vec3<float>& o, const sphere<float>& s, const
     const double r2 = double(s.radius) * s.radius;  // exact: a float squared
     const double a = dot(d, d), h = dot(f, d), ff = dot(f, f);
     // No test of every input (ten comparisons on every ray): NaN and
-    // infinity make c, h or the discriminant NaN or infinite, and the tests
-    // below and near_root_first reject those; off the common path they are
-    // rejected explicitly.
+    // infinity make c or the discriminant NaN, and the tests below and
+    // root_ahead reject those; off the common path they are rejected
+    // explicitly.
     if (!(a > 0)) return std::nullopt;
-    const double c0 = ff - r2;
-    double c = c0;
+    double c = ff - r2, disc = 0;
     const bool ahead_only = range.min >= 0;
-    bool by_cross = true;
-    if (c0 >= 0x1p-22 * ff) {
-        // Outside, clearly (the common case: the path of the plain form plus
-        // one test). Leaving (h >= 0): the roots c/q and q/a are both <= 0.
-        // Should the exact h be < 0 while the computed one is >= 0, |h| is
-        // below h's rounding error (2^-50 |f| |d|) and the exact discriminant
-        // h^2 - a c < 2^-100 a f.f - 2^-23 a f.f is negative: a miss all the same.
+    bool grazing = false;
+    if (c >= 0x1p-22 * ff) {
+        // Outside, clearly (the common case): c is off by at most about
+        // 6 * 2^-53 f.f (f = o - C by 2^-53 of each component, each square
+        // and sum by 2^-53 of its size), at most 2^-28 of itself. Leaving
+        // (h >= 0): the roots c/q and q/a are both <= 0. Should the exact h
+        // be < 0 while the computed one is >= 0, |h| is below h's rounding
+        // error (2^-50 |f| |d|) and the exact discriminant h^2 - a c <
+        // 2^-100 a f.f - 2^-23 a f.f is negative: a miss all the same.
         if (h >= 0 && ahead_only) return std::nullopt;
-    } else {
-        // NaN or infinity in d, o or C (c0 is NaN, or d is infinite): no
-        // further work. a and f.f of float inputs cannot overflow in double.
-        if (!(a + ff < infinity<double>)) return std::nullopt;
-        // Inside, clearly (h^2 - a c is a sum of two positive terms), or within
-        // about 2^-22 |f| of the surface, leaving or entering, not near
-        // tangency: a |c| <= h^2 / 4, so h^2 - a c does not cancel, and h is
-        // within 2^-40 of itself. Only c needs care: c0 is off by at most about
-        // 6 * 2^-53 f.f (f = o - C by 2^-53 of each component, each square and
-        // sum by 2^-53 of its size), below 2^-23.4 of c (at most 1 ULP of the
-        // float t) when |c0| >= 2^-27 f.f. Only origins within about 2^-27 |f|
-        // of the surface need c_near_surface, which returns c within 2^-25 of
-        // itself or, when its sign puts the root c/q behind the range (q has
-        // the sign of -h), a c of certain sign.
-        by_cross = !(c0 <= -0x1p-22 * ff || h * h >= 0x1p-20 * a * ff);
-        if (!(std::fabs(c) >= 0x1p-27 * ff))
-            c = c_near_surface(ray_.origin, s, f, ahead_only ? (h >= 0 ? 1.0 : -1.0) : 0.0);
-        if (!by_cross && c >= 0 && h >= 0 && ahead_only) return std::nullopt;  // leaving from outside (or from t = 0)
-    }
-    double disc = 0;
-    if (by_cross) {
-        // a c may be close to h^2 (a far sphere, a ray near tangency): the
-        // discriminant as a r^2 - |f x d|^2 (Lagrange's identity), which
-        // keeps its digits there.
-        const vec3<double> g = cross(f, d);
-        const double ar2 = a * r2;
-        disc = ar2 - dot(g, g);
-        if (!(disc >= ar2 * 0x1p-26)) {  // one test on the common path
-            // A miss by more than the discriminant's rounding error (a few
-            // 2^-53 of a r^2, far less than the margin used here), or NaN.
-            if (!(disc >= -ar2 * 0x1p-40)) return std::nullopt;
-            return sphere_grazing(ray_, s, range, f, h);
+        // h^2 - a c first (two products, where the cross product takes
+        // twelve operations): it is off by at most about 19 * 2^-53 a f.f (h
+        // by 4 2^-53 |f| |d|, c as above, and both h^2 and a c are at most
+        // a f.f). When it is at least 2^-21 a f.f that is below 2^-27.7 of
+        // it, and when it is below -2^-48 a f.f the ray surely misses. In
+        // between (a far sphere, whose discriminant is tiny next to a f.f,
+        // or a ray near tangency) it has cancelled, and the discriminant is
+        // computed again from f x d.
+        disc = h * h - a * c;
+        if (!(disc >= 0x1p-21 * a * ff)) {
+            if (disc < -0x1p-48 * a * ff) return std::nullopt;
+            disc = disc_by_cross(f, d, a, r2, &grazing);
         }
     } else {
-        // c < 0, or a |c| <= h^2 / 4: nothing cancels, and a c of certain sign
-        // only (c < 0 with h < 0 here) is tiny next to h^2.
-        disc = h * h - a * c;
+        // NaN or infinity in d, o or C (c is NaN, or d is infinite). a and
+        // f.f of float inputs cannot overflow in double.
+        if (!(a + ff < infinity<double>)) return std::nullopt;
+        // Within about 2^-22 |f| of the surface, or inside. c is off by at
+        // most 6 * 2^-53 f.f, below 2^-25 of c (at most 1 ULP of the float
+        // t) when |c| >= 2^-27 f.f; only origins nearer the surface need
+        // c_near_surface. It returns c within 2^-26 of itself or, when its
+        // sign puts the root c/q behind the range (q has the sign of -h), a
+        // c of certain sign.
+        if (!(std::fabs(c) >= 0x1p-27 * ff))
+            c = c_near_surface(ray_.origin, s, f, ahead_only ? (h >= 0 ? 1.0 : -1.0) : 0.0);
+        // Inside, clearly (h^2 - a c is a sum of two positive terms), or not
+        // near tangency: a |c| <= 2^-22 a f.f <= h^2 / 4, so h^2 - a c does
+        // not cancel, and h is within 2^-40 of itself.
+        if (c <= -0x1p-22 * ff || h * h >= 0x1p-20 * a * ff) {
+            if (c >= 0 && h >= 0 && ahead_only) return std::nullopt;  // leaving from outside (or from t = 0)
+            disc = h * h - a * c;
+        } else {
+            disc = disc_by_cross(f, d, a, r2, &grazing);
+        }
     }
+    if (grazing) return sphere_grazing(ray_, s, range, f, h);
+    if (!(disc >= 0)) return std::nullopt;  // a miss, or NaN
+    if (ahead_only) return root_ahead(a, h, c, disc, range);
     return near_root_first(a, h, c, disc, range);
 }
 }  // namespace detail
