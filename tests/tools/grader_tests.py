@@ -180,6 +180,18 @@ class ProgramOutput(ToolTest):
         self.assertIn("SOLUTION-BYTES", self.said(["02", "03"], False))     # a kit: the student's own code
 
 
+class JudgeLimits(ToolTest):
+    """The judge runs as the grader's user (root) outside the sandbox and decodes what the student's
+    runner sends: it is started with an address-space limit (judge.JUDGE_MEMORY_BYTES)."""
+
+    def test_a_judge_process_has_a_memory_limit(self):
+        from rtgrader import judge
+        said = subprocess.run([sys.executable, "-c", "import resource; print(resource.getrlimit(resource.RLIMIT_AS)[0])"],
+                              capture_output=True, text=True, preexec_fn=judge._judge_limits, check=True).stdout
+        self.assertEqual(int(said), judge.JUDGE_MEMORY_BYTES)
+        self.assertLessEqual(judge.JUDGE_MEMORY_BYTES, 4096 << 20)
+
+
 class Batch(ToolTest):
     def test_batch_grades_each_submission_and_writes_the_scores(self):
         """Each submission gets its results and a row of scores.csv; mallory's file includes alice's

@@ -41,6 +41,19 @@ class CaseOutcome:
     timed_out: bool = False
 
 
+# The judge is trusted code, but it decodes whatever the runner sends (the student's process) and runs
+# as the grader's user (root) outside the sandbox: a list the runner claims to hold (one byte an item on
+# the wire, many bytes an item once decoded) must not let it take the machine's memory. Its own needs
+# are a few MiB (the largest judge, chapter 08's, peaks under 5 MiB resident).
+JUDGE_MEMORY_BYTES = 2048 << 20
+
+
+def _judge_limits():     # in the judge's process, before exec
+    import resource
+    resource.setrlimit(resource.RLIMIT_AS, (JUDGE_MEMORY_BYTES, JUDGE_MEMORY_BYTES))
+    resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+
+
 def escape_filter(case):
     # doctest reads ',' as "or" in a filter: escape it.
     return case.replace("\\", "\\\\").replace(",", "\\,")
@@ -177,7 +190,7 @@ def _one_judge(judge, cases, host, limits, cwd, log_path, budget, results):
             [judge, "--test-case=" + ",".join(escape_filter(c) for c in cases), "--no-version", "--no-colors"],
             cwd=cwd, stdin=subprocess.DEVNULL, stdout=log, stderr=log,
             env={"PATH": "/usr/bin:/bin", "LANG": "C.UTF-8", "RT_JUDGE_CONTROL_FD": str(judge_control.fileno())},
-            pass_fds=(judge_control.fileno(),))
+            pass_fds=(judge_control.fileno(),), preexec_fn=_judge_limits)
     judge_control.close()
     frames = _Frames(grader_end)
     has_runner = None         # the Runner this judge process holds
