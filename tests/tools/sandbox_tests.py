@@ -253,6 +253,27 @@ class SandboxFixture(ToolTest):
 add_fixture_tests(SandboxFixture, "sandbox-*/sandbox.json")
 
 
+class ContainerRoot(ToolTest):
+    def test_root_without_sys_admin_grades_with_its_filter(self):
+        """Root without CAP_SYS_ADMIN, as in a Docker container (Gradescope's): bwrap cannot make
+        namespaces, the fallback by user runs, and the seccomp filter is still installed (with no new
+        privileges first): sandbox-shared-state's tests are scored as the solution's, nothing leaks."""
+        if not ROOT:
+            self.skipTest("needs root")
+        name = "sandbox-shared-state"
+        with open(os.path.join(FIXTURES, name, "sandbox.json")) as f:
+            spec = json.load(f)
+        sub = make_submission(name, spec)
+        out = os.path.join(config.work, "out", "container-root", "results.json")
+        graded = grade(sub, out, "01", config.build_dir, LIMITS, prefix=["setpriv", "--bounding-set=-sys_admin", "--"])
+        data = self.assertGraded(graded)
+        self.assertIn("FALLBACK", graded.stderr, "namespaces without CAP_SYS_ADMIN?")
+        self.assertNotIn("no seccomp filter", data["output"], "the filter was not installed")
+        self.assertStatuses("container root", data, spec["must_fail"], [], {t["name"]: "passed" for t in data["tests"]})
+        with open(out) as f:
+            self.assertNotIn("LEAK-", f.read())
+
+
 class Outputs(ToolTest):
     def test_root_never_writes_through_a_planted_link(self):
         """Links planted in the output folder are replaced, never written through;

@@ -58,15 +58,17 @@ class Graded:
 
 
 def grade(submission, out, chapters, build_dir=None, limits=(), env_extra=None, grade_cmd=GRADE, timeout=300,
-          as_user=None):
+          as_user=None, prefix=()):
     """Grades submission with the grader's own command line; never raises on a failed grading.
-    as_user: run it as that user (root only; with Debian's python3, which every user may run)."""
+    as_user: run it as that user (root only; with Debian's python3, which every user may run).
+    prefix: a command the grader runs under (e.g. setpriv dropping a capability)."""
     env = dict(os.environ)
     env.pop("RT_GRADER_ISOLATION", None)
     env.update(env_extra or {})
     cmd = [sys.executable, grade_cmd, submission, "--out", out, "--chapters", chapters, *limits]
     if as_user:
         cmd = ["runuser", "-u", as_user, "--", "/usr/bin/python3", *cmd[1:]]
+    cmd = [*prefix, *cmd]
     if build_dir:
         cmd += ["--build-dir", build_dir]
     if os.path.exists(out):

@@ -43,6 +43,7 @@ class Isolation:
     setpriv: str = None
     cgroup: "Cgroups" = None
     notes: list = field(default_factory=list)   # loud warnings for the output and results.json
+    syscall_filter: bytes = None                 # syscall_filter()'s program when it can be used here
 
     def describe(self):
         """One line for the grader's output."""
@@ -158,8 +159,26 @@ def detect():
         if os.environ.get("RT_GRADER_CGROUP", "auto").lower() != "off":
             iso.cgroup = Cgroups.detect()
         iso.notes.append(_memory_note(iso.cgroup))
+        iso.syscall_filter = syscall_filter()
+        why = _probe_filter(iso.syscall_filter) if iso.syscall_filter and iso.mode != NAMESPACES else ""
+        if why or not iso.syscall_filter:
+            iso.syscall_filter = None
+            iso.notes.append("no seccomp filter here (" + (why or "not x86-64") + "): the kernel's keyrings, "
+                             "user namespaces and the 32-bit system calls were within the code's reach")
         _cached[forced] = iso
         return iso
+
+
+def _probe_filter(program):
+    """'' when a process here can install the filter itself (the fallbacks; a container may forbid it),
+    else why not."""
+    import ctypes
+    install = syscall_filter_installer(program, ctypes.CDLL(None, use_errno=True))
+    try:
+        done = subprocess.run(["/bin/true"], preexec_fn=install, timeout=30, capture_output=True)
+    except (OSError, subprocess.SubprocessError) as e:
+        return str(e)
+    return "" if done.returncode == 0 else "prctl(PR_SET_SECCOMP) is refused"
 
 
 def _memory_note(cgroup):
@@ -508,8 +527,8 @@ def syscall_filter_installer(program, libc):
     """Where no bwrap installs it: a function for the child, before exec, that installs
     program (syscall_filter()'s bytes) with prctl (then inherited by setpriv and the code).
     Everything is prepared here, in the grader: the child only makes two calls. libc is
-    ctypes' C library, loaded in the grader. Not root: PR_SET_NO_NEW_PRIVS first, which
-    the kernel asks of an unprivileged filter. A child that cannot install it ends (126)."""
+    ctypes' C library, loaded in the grader. A child that cannot install it ends (126):
+    detect() checks once that it can (_probe_filter)."""
     import ctypes
 
     class SockFprog(ctypes.Structure):
@@ -518,7 +537,9 @@ def syscall_filter_installer(program, libc):
     pointer = ctypes.byref(prog)
 
     def install():
-        if os.geteuid() != 0 and libc.prctl(38, 1, 0, 0, 0) != 0:     # PR_SET_NO_NEW_PRIVS
+        # No new privileges first, root too: a root without CAP_SYS_ADMIN (a container's) may not
+        # install a filter otherwise; setpriv, run next, gives privileges up and gains none.
+        if libc.prctl(38, 1, 0, 0, 0) != 0:                           # PR_SET_NO_NEW_PRIVS
             os._exit(126)
         if libc.prctl(22, 2, pointer, 0, 0) != 0:                     # PR_SET_SECCOMP, SECCOMP_MODE_FILTER
             os._exit(126)

@@ -478,7 +478,7 @@ def run(argv, *, limits, log_path, user=None, inputs=(), scratch=None, env_extra
     private_root = private_root or "/tmp"
     moved, own_cwd = {}, None
     seccomp_fd = None
-    program_bytes = isolation.syscall_filter()   # no user namespaces, no keyrings, no 32-bit calls
+    program_bytes = iso.syscall_filter   # no user namespaces, no keyrings, no 32-bit calls (isolation.py)
     install_filter = isolation.syscall_filter_installer(program_bytes, _libc()) \
         if program_bytes and iso.mode != isolation.NAMESPACES else None
     if iso.mode == isolation.NAMESPACES:
