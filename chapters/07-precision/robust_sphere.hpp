@@ -53,6 +53,8 @@ namespace rt::ch07 {
 //   0. f = o - C exactly, as a pair hi + lo (two-sum). Then powers of two
 //      scale f and the radius together, and d on its own, so that no
 //      square overflows or underflows; t = t' 2^(ed - ef) undoes it.
+//      (Inputs within a factor 4 of the largest W are quartered before the
+//      two-sum, so that o - C itself stays finite.)
 //   1. The discriminant through the perpendicular distance, subtracted
 //      BEFORE squaring: disc/4 = a r^2 - |f x d|^2 (|f x d| / |d| is the
 //      length of the foot vector f - (half_b / a) d), with every product

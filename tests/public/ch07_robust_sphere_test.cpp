@@ -301,3 +301,12 @@ TEST_CASE_TEMPLATE("a subnormal direction is not a zero direction", T, RT_SCALAR
                   "like a = d.d > 0 calls it zero because d.d underflows; test the components, and scale. Got "
                       << describe(t_of(hit)));
 }
+
+TEST_CASE_TEMPLATE("an origin and a centre near the largest number: o - C must not overflow", T, RT_SCALARS) {
+    // M is T's largest finite number. o = -M and C = +M are finite, but o - C = -2M is not; the near
+    // root is t = M (exact, and a number of T). Quarter o, C and r before the two-sum (README, step 0).
+    const T M = std::numeric_limits<T>::max();
+    auto hit = intersect_sphere_robust(sphere<T>{{0, 0, M}, M}, ray<T>{{0, 0, -M}, {0, 0, 1}}, ahead<T>());
+    CHECK_MESSAGE(ulps_from(hit, static_cast<long double>(M)) <= 4,
+                  "the hit is at t = " << double(M) << " (the largest number of T); got " << describe(t_of(hit)));
+}
