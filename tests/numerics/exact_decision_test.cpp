@@ -206,11 +206,14 @@ T plane_plain(const vec3<T>& point, const vec3<T>& n, const ray<T>& r) {
     return num / (n.x * r.direction.x + n.y * r.direction.y + n.z * r.direction.z);
 }
 
-// The triangle kernel as a lane of fast_path.cpp runs it (corner a, edges
-// e1 = b - a and e2 = c - a as the renderer stores them); bound < 0 gives
-// Moeller-Trumbore without the decision.
+// The triangle kernel as a lane of fast_path.cpp runs it on the triangle
+// with corners a, b, c: corner a and the rounded edges e1 = b - a,
+// e2 = c - a in the lanes, the corners in the exact decision. bound < 0
+// gives Moeller-Trumbore without the decision.
 template <class T>
-T triangle_lane(const vec3<T>& a, const vec3<T>& e1, const vec3<T>& e2, const ray<T>& r, T tmin, bool decide = true) {
+T triangle_lane_corners(const vec3<T>& a, const vec3<T>& b, const vec3<T>& c, const ray<T>& r, T tmin,
+                        bool decide = true) {
+    const vec3<T> e1 = b - a, e2 = c - a;
     const vec3<T> s = r.origin - a, q = cross(s, e1), d = r.direction;
     const T bound = decide ? rk::flat_scale(e1.x, e1.y, e1.z, e2.x, e2.y, e2.z) * rk::direction_max(d.x, d.y, d.z) +
                                  rk::flat_tiny<T>()
@@ -219,7 +222,14 @@ T triangle_lane(const vec3<T>& a, const vec3<T>& e1, const vec3<T>& e2, const ra
     const T t = rk::triangle_t(s.x, s.y, s.z, q.x, q.y, q.z, e1.x, e1.y, e1.z, e2.x, e2.y, e2.z, d.x, d.y, d.z, tmin,
                                bound, unsure);
     if (!unsure) return t;
-    return rk::triangle_t_exact(s.x, s.y, s.z, q.x, q.y, q.z, e1.x, e1.y, e1.z, e2.x, e2.y, e2.z, d.x, d.y, d.z, tmin);
+    return rk::triangle_t_exact(s.x, s.y, s.z, q.x, q.y, q.z, e1.x, e1.y, e1.z, e2.x, e2.y, e2.z, d.x, d.y, d.z, tmin, a,
+                                b, c);
+}
+
+// The same from corner a and edges e1, e2 (the tests build a + e1 and a + e2 exact).
+template <class T>
+T triangle_lane(const vec3<T>& a, const vec3<T>& e1, const vec3<T>& e2, const ray<T>& r, T tmin, bool decide = true) {
+    return triangle_lane_corners(a, a + e1, a + e2, r, tmin, decide);
 }
 
 }  // namespace render_kernels
@@ -325,5 +335,31 @@ TEST_CASE_TEMPLATE("render triangle kernel: a non-zero subnormal direction is a 
         // The plane kernel agrees on the triangle's plane.
         CHECK(render_kernels::plane_lane(a, vec3<T>(0, 0, 1), ray<T>{vec3<T>(0, 0, 0), d}, T(0)) == want);
     }
+}
+TEST_CASE_TEMPLATE("render triangle kernel: rays exactly in a triangle's plane miss even where its edges round", T,
+                   RT_SCALARS) {
+    // Corner a = K u is coarse (K = 2^(digits + 3)), b = v and c = v + m are small integers: the edges
+    // b - a and c - a round in T, so the rounded edges need not span the plane any more. The ray runs
+    // along the edge bc (origin v - k m, direction m, all exact): it lies in the triangle's plane.
+    std::mt19937 rng(41);
+    std::uniform_int_distribution<int> small(-7, 7), mid(-(1 << 10), 1 << 10), steps(1, 4);
+    const T K = std::ldexp(T(1), std::numeric_limits<T>::digits + 3);
+    int cases = 0, edges_not_flat = 0, false_hits = 0;
+    for (int i = 0; i < 400; ++i) {
+        const vec3<T> u(T(small(rng)), T(small(rng)), T(small(rng))), v(T(mid(rng)), T(mid(rng)), T(mid(rng))),
+            m(T(small(rng)), T(small(rng)), T(small(rng)));
+        if (u == vec3<T>(0, 0, 0) || m == vec3<T>(0, 0, 0)) continue;
+        const vec3<T> a = K * u, b = v, c = v + m;
+        const ray<T> r{v - T(steps(rng)) * m, m};
+        REQUIRE(fm::exact_orientation_sign(r.direction, a, b, c) == 0);
+        ++cases;
+        edges_not_flat += fm::exact_orientation_sign(r.direction, vec3<T>(0), b - a, c - a) != 0;
+        for (const interval<T> range : {interval<T>{T(0), infinity<T>}, interval<T>{-infinity<T>, infinity<T>}})
+            false_hits += render_kernels::triangle_lane_corners(a, b, c, r, range.min) < range.max;
+    }
+    MESSAGE(cases << " in-plane rays, rounded edges not flat in " << edges_not_flat);
+    REQUIRE(cases >= 300);
+    REQUIRE_MESSAGE(edges_not_flat >= 30, "stiff: rounded edges that are not flat");
+    CHECK(false_hits == 0);
 }
 #endif

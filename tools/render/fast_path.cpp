@@ -38,6 +38,7 @@
 #include "fast_path_kernels.hpp"  // the plane and triangle kernels
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -119,6 +120,16 @@ struct soa_scene {
     bvh_tree sphere_tree;
     bvh_wide_tree triangle_tree;
     std::vector<std::int64_t> original;
+    // The scene's triangles, for the rare exact decisions (corners below).
+    const std::vector<triangle<double>>* source_triangles = nullptr;
+
+    // The corners of stored triangle j rounded to T, as corner a and the
+    // edges were computed from them: triangle_t_exact decides "flat" on the
+    // corners (rounded edges of an exactly flat case need not be flat).
+    std::array<vec3<T>, 3> corners(size_t j) const {
+        const triangle<double>& x = (*source_triangles)[tree ? triangle_tree.order[j] : j];
+        return {convert<T>(x.a), convert<T>(x.b), convert<T>(x.c)};
+    }
 
     // magnitude: the largest coordinate of the scene, eye and lights, which
     // sets how much the boxes are widened (see boxes below).
@@ -126,6 +137,7 @@ struct soa_scene {
         sphere_count = s.spheres.size();
         plane_count = s.planes.size();
         triangle_count = s.triangles.size();
+        source_triangles = &s.triangles;
         if (tree) build_trees(s, magnitude);
         auto sphere_at = [&](size_t j) -> const sphere<double>& {
             return s.spheres[tree ? sphere_tree.order[j] : j];
@@ -452,6 +464,17 @@ template <class T>
                       tmin, flat_bound, unsure);
 }
 
+// triangle_t_exact for the scene's triangle j (j < triangle_count): the
+// scalar path for the rare lanes triangle_t was unsure of.
+template <class T>
+T triangle_exact_t(const soa_scene<T>& s, size_t j, T ox, T oy, T oz, T dx, T dy, T dz, T tmin) {
+    const T sx = ox - s.ax[j], sy = oy - s.ay[j], sz = oz - s.az[j];
+    const T qx = sy * s.e1z[j] - sz * s.e1y[j], qy = sz * s.e1x[j] - sx * s.e1z[j], qz = sx * s.e1y[j] - sy * s.e1x[j];
+    const std::array<vec3<T>, 3> c = s.corners(j);
+    return triangle_t_exact(sx, sy, sz, qx, qy, qz, s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j], s.e2z[j], dx, dy,
+                            dz, tmin, c[0], c[1], c[2]);
+}
+
 // One ray against the triangles [g, g + leaf_lanes) of a tree's leaf that
 // ends at e (lanes from e on, other leaves' triangles or padding, give
 // infinity): t[i] for triangle g + i, by the brute-force kernel in
@@ -472,11 +495,7 @@ struct triangle_group {
         for (int i = 0; i < leaf_lanes; ++i) {  // nearly parallel or degenerate: decide exactly
             const size_t j = g + size_t(i);
             if (j >= e) break;
-            const T sx = ox - s.ax[j], sy = oy - s.ay[j], sz = oz - s.az[j];
-            const T qx = sy * s.e1z[j] - sz * s.e1y[j], qy = sz * s.e1x[j] - sx * s.e1z[j],
-                    qz = sx * s.e1y[j] - sy * s.e1x[j];
-            t[i] = triangle_t_exact(sx, sy, sz, qx, qy, qz, s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j], s.e2z[j],
-                                    dx, dy, dz, tmin);
+            t[i] = triangle_exact_t(s, j, ox, oy, oz, dx, dy, dz, tmin);
         }
     }
 
@@ -611,11 +630,7 @@ void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, i
             if (unsure)  // nearly parallel or degenerate: decide exactly (keep takes a t once)
                 for (int k = 0; k < W; ++k) {
                     const int o = CommonOrigin ? 0 : k;
-                    const T sx = p.ox[o] - s.ax[i], sy = p.oy[o] - s.ay[i], sz = p.oz[o] - s.az[i];
-                    const T qx = sy * e1z - sz * e1y, qy = sz * e1x - sx * e1z, qz = sx * e1y - sy * e1x;
-                    keep(k,
-                         triangle_t_exact(sx, sy, sz, qx, qy, qz, e1x, e1y, e1z, e2x, e2y, e2z, p.dx[k], p.dy[k],
-                                          p.dz[k], tmin),
+                    keep(k, triangle_exact_t(s, i, p.ox[o], p.oy[o], p.oz[o], p.dx[k], p.dy[k], p.dz[k], tmin),
                          base + I(i));
                 }
         }
@@ -724,13 +739,8 @@ bool any_hit(const soa_scene<T>& s, const ray<T>& r, T tmin, T tmax) {
                 blocked |= int(triangle_lane_t(s, j, ox, oy, oz, dx, dy, dz, d_max, tmin, unsure) < tmax);
             }
             if (unsure && !blocked)  // nearly parallel or degenerate: decide exactly
-                for (size_t j = i; j < i + G; ++j) {
-                    const T sx = ox - s.ax[j], sy = oy - s.ay[j], sz = oz - s.az[j];
-                    const T qx = sy * s.e1z[j] - sz * s.e1y[j], qy = sz * s.e1x[j] - sx * s.e1z[j],
-                            qz = sx * s.e1y[j] - sy * s.e1x[j];
-                    blocked |= int(triangle_t_exact(sx, sy, sz, qx, qy, qz, s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j],
-                                                    s.e2y[j], s.e2z[j], dx, dy, dz, tmin) < tmax);
-                }
+                for (size_t j = i; j < i + G && j < s.triangle_count; ++j)  // past the count: padding, never a hit
+                    blocked |= int(triangle_exact_t(s, j, ox, oy, oz, dx, dy, dz, tmin) < tmax);
             if (blocked) return true;
         }
     }

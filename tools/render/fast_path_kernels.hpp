@@ -29,13 +29,11 @@ namespace rt::render_tool {
 // within it (rare), the lane is left out here and `unsure` is set, and the
 // caller runs the scalar *_exact version below on the packet, which decides
 // exactly (exact_sign.hpp) and otherwise computes the very same t.
-// "Exactly" is for the shape as fast_path.cpp stores it in T: a plane's
-// normal normalised in double and rounded to T, a triangle's corner a and
-// edges b - a, c - a computed from the corners rounded to T. When that
-// rounding moves the shape (a scene triangle with exactly collinear
-// corners, or a ray exactly in its plane, whose rounded edges are not), the
-// stored shape is decided, and the ray may hit it. Where the edges and the
-// normal are exact in T (integer or dyadic scenes), no such ray hits.
+// "Exactly" is for the shape as fast_path.cpp holds it in T: a triangle's
+// corners rounded to T (the scene's own corners in double), a plane's
+// normal normalised in double and then rounded to T (so a ray exactly
+// parallel to a scene plane whose unit normal rounds may still be decided
+// as not parallel: it then hits at an enormous t).
 // Directions: any non-zero finite one, subnormal components included (see
 // direction_max). Triangles whose edge products underflow are not rescaled.
 // The sphere kernels (fast_path.cpp) compute d.d plainly: a subnormal
@@ -98,16 +96,19 @@ template <class T>
 
 // The same, deciding e1.(d x e2) = 0 (a ray parallel to the triangle's
 // plane or in it, or a degenerate triangle) exactly: for the lanes
-// triangle_t was unsure of.
+// triangle_t was unsure of. The decision is made on the triangle's corners
+// a, b, c (as given to the renderer, rounded to T), not on the edges: an
+// edge b - a is rounded, and the rounded edges of a triangle with exactly
+// collinear corners, or one with the ray exactly in its plane, need not be
+// flat.
 // A non-zero direction too small for its products to stay normal (the lane
 // was sent here by direction_max's infinite bound) is scaled by a power of
 // two first: o + t' (2^k d) is o + t d with t = 2^k t', so t scales back
 // exactly and u, v do not change.
 template <class T>
 T triangle_t_exact(T sx, T sy, T sz, T qx, T qy, T qz, T e1x, T e1y, T e1z, T e2x, T e2y, T e2z, T dx, T dy, T dz,
-                   T tmin) {
-    if (formulations::flat_exactly(vec3<T>(dx, dy, dz), vec3<T>(0), vec3<T>(e1x, e1y, e1z), vec3<T>(e2x, e2y, e2z)))
-        return infinity<T>;
+                   T tmin, const vec3<T>& a, const vec3<T>& b, const vec3<T>& c) {
+    if (formulations::flat_exactly(vec3<T>(dx, dy, dz), a, b, c)) return infinity<T>;
     const int k = formulations::direction_scale(vec3<T>(dx, dy, dz));
     int ignored = 0;
     const T t = triangle_t(sx, sy, sz, qx, qy, qz, e1x, e1y, e1z, e2x, e2y, e2z, std::ldexp(dx, k), std::ldexp(dy, k),
