@@ -196,7 +196,7 @@ T plane_lane(const vec3<T>& point, const vec3<T>& n, const ray<T>& r, T tmin) {
     const T num = n.x * (point.x - r.origin.x) + n.y * (point.y - r.origin.y) + n.z * (point.z - r.origin.z);
     int unsure = 0;
     const T t = rk::plane_t(num, n.x, n.y, n.z, r.direction.x, r.direction.y, r.direction.z, tmin, unsure);
-    return unsure ? rk::plane_t_exact(num, n.x, n.y, n.z, r.direction.x, r.direction.y, r.direction.z, tmin) : t;
+    return unsure ? rk::plane_t_exact(num, n.x, n.y, n.z, r.direction.x, r.direction.y, r.direction.z, tmin, n) : t;
 }
 
 // The plain quotient, without any decision: what the kernel computed before.
@@ -233,6 +233,47 @@ T triangle_lane(const vec3<T>& a, const vec3<T>& e1, const vec3<T>& e2, const ra
 }
 
 }  // namespace render_kernels
+
+// The plane kernel as fast_path.cpp runs it on a scene plane: the lanes use
+// the unit normal (normalised in double, rounded to T), the exact decision
+// the scene's normal.
+template <class T>
+T plane_lane_scene(const vec3<T>& point, const vec3<T>& normal, const ray<T>& r, T tmin) {
+    const vec3d u = normalize(convert<double>(normal));
+    const vec3<T> n(T(u.x), T(u.y), T(u.z));
+    const T num = n.x * (point.x - r.origin.x) + n.y * (point.y - r.origin.y) + n.z * (point.z - r.origin.z);
+    int unsure = 0;
+    const T t = rk::plane_t(num, n.x, n.y, n.z, r.direction.x, r.direction.y, r.direction.z, tmin, unsure);
+    return unsure ? rk::plane_t_exact(num, n.x, n.y, n.z, r.direction.x, r.direction.y, r.direction.z, tmin, normal)
+                  : t;
+}
+
+TEST_CASE_TEMPLATE("render plane kernel: rays exactly parallel to a scene plane whose unit normal rounds miss", T,
+                   RT_SCALARS) {
+    // Integer normal n and direction d = n x m (exactly perpendicular); the unit normal rounds, so d is not
+    // exactly perpendicular to it. The origin is 1 to 3 units off the plane along an axis.
+    std::mt19937 rng(43);
+    std::uniform_int_distribution<int> c(-(1 << 8), 1 << 8), off(1, 3);
+    int cases = 0, unit_not_parallel = 0, false_hits = 0;
+    for (int i = 0; i < 400; ++i) {
+        const vec3<T> n(T(c(rng)), T(c(rng)), T(c(rng))), m(T(c(rng)), T(c(rng)), T(c(rng)));
+        const vec3<T> d = cross(n, m);  // entries below 2^18: exact
+        if (d == vec3<T>(0, 0, 0)) continue;
+        const vec3<T> o(T(c(rng)), T(c(rng)), T(c(rng)));
+        const vec3<T> point = o + vec3<T>(T(off(rng)), 0, 0);
+        if (n.x == 0) continue;  // the origin must be off the plane
+        REQUIRE(fm::exact_dot_sign(d, n) == 0);
+        ++cases;
+        const vec3d u = normalize(convert<double>(n));
+        unit_not_parallel += fm::exact_dot_sign(d, vec3<T>(T(u.x), T(u.y), T(u.z))) != 0;
+        false_hits += plane_lane_scene(point, n, ray<T>{o, d}, T(0)) != infinity<T>;
+        false_hits += plane_lane_scene(point, n, ray<T>{o, -d}, T(0)) != infinity<T>;
+    }
+    MESSAGE(cases << " exactly parallel rays, not parallel to the rounded unit normal in " << unit_not_parallel);
+    REQUIRE(cases >= 300);
+    REQUIRE_MESSAGE(unit_not_parallel >= 100, "stiff: unit normals that round off the perpendicular");
+    CHECK(false_hits == 0);
+}
 
 TEST_CASE_TEMPLATE("render plane kernel: exactly parallel and in-plane rays miss although the rounded d.n is not 0",
                    T, RT_SCALARS) {

@@ -120,8 +120,14 @@ struct soa_scene {
     bvh_tree sphere_tree;
     bvh_wide_tree triangle_tree;
     std::vector<std::int64_t> original;
-    // The scene's triangles, for the rare exact decisions (corners below).
+    // The scene's triangles and planes, for the rare exact decisions
+    // (corners and plane_normal below).
     const std::vector<triangle<double>>* source_triangles = nullptr;
+    const std::vector<plane<double>>* source_planes = nullptr;
+
+    // Plane i's normal as the scene gives it, rounded to T (nx, ny, nz are
+    // the normalised one): plane_t_exact decides "parallel" on it.
+    vec3<T> plane_normal(size_t i) const { return convert<T>((*source_planes)[i].normal); }
 
     // The corners of stored triangle j rounded to T, as corner a and the
     // edges were computed from them: triangle_t_exact decides "flat" on the
@@ -138,6 +144,7 @@ struct soa_scene {
         plane_count = s.planes.size();
         triangle_count = s.triangles.size();
         source_triangles = &s.triangles;
+        source_planes = &s.planes;
         if (tree) build_trees(s, magnitude);
         auto sphere_at = [&](size_t j) -> const sphere<double>& {
             return s.spheres[tree ? sphere_tree.order[j] : j];
@@ -587,7 +594,8 @@ void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, i
                 for (int k = 0; k < W; ++k) {
                     const int o = CommonOrigin ? 0 : k;
                     const T num = nx * (s.px[i] - p.ox[o]) + ny * (s.py[i] - p.oy[o]) + nz * (s.pz[i] - p.oz[o]);
-                    keep(k, plane_t_exact(num, nx, ny, nz, p.dx[k], p.dy[k], p.dz[k], tmin), base + I(i));
+                    keep(k, plane_t_exact(num, nx, ny, nz, p.dx[k], p.dy[k], p.dz[k], tmin, s.plane_normal(i)),
+                         base + I(i));
                 }
         }
     }
@@ -714,9 +722,10 @@ bool any_hit(const soa_scene<T>& s, const ray<T>& r, T tmin, T tmax) {
                 blocked |= int(plane_t(num, s.nx[j], s.ny[j], s.nz[j], dx, dy, dz, tmin, unsure) < tmax);
             }
             if (unsure && !blocked)  // nearly parallel: decide exactly
-                for (size_t j = i; j < i + G; ++j) {
+                for (size_t j = i; j < i + G && j < s.plane_count; ++j) {  // past the count: padding
                     const T num = s.nx[j] * (s.px[j] - ox) + s.ny[j] * (s.py[j] - oy) + s.nz[j] * (s.pz[j] - oz);
-                    blocked |= int(plane_t_exact(num, s.nx[j], s.ny[j], s.nz[j], dx, dy, dz, tmin) < tmax);
+                    blocked |=
+                        int(plane_t_exact(num, s.nx[j], s.ny[j], s.nz[j], dx, dy, dz, tmin, s.plane_normal(j)) < tmax);
                 }
             if (blocked) return true;
         }

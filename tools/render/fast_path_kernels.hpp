@@ -29,11 +29,8 @@ namespace rt::render_tool {
 // within it (rare), the lane is left out here and `unsure` is set, and the
 // caller runs the scalar *_exact version below on the packet, which decides
 // exactly (exact_sign.hpp) and otherwise computes the very same t.
-// "Exactly" is for the shape as fast_path.cpp holds it in T: a triangle's
-// corners rounded to T (the scene's own corners in double), a plane's
-// normal normalised in double and then rounded to T (so a ray exactly
-// parallel to a scene plane whose unit normal rounds may still be decided
-// as not parallel: it then hits at an enormous t).
+// "Exactly" is for the scene's own shapes rounded to T (for double, the
+// scene's shapes): a triangle's corners, a plane's normal as given.
 // Directions: any non-zero finite one, subnormal components included (see
 // direction_max). Triangles whose edge products underflow are not rescaled.
 // The sphere kernels (fast_path.cpp) compute d.d plainly: a subnormal
@@ -56,11 +53,15 @@ template <class T>
 }
 
 // The same, deciding d.n = 0 exactly: for the lanes plane_t was unsure of.
+// The decision is made on the plane's own normal (as given to the renderer,
+// rounded to T), not on the unit normal of the lanes: normalising rounds, and
+// a ray exactly parallel to the plane need not be parallel to the rounded
+// unit normal (d.n within the lane's bound sends such a ray here).
 // A direction so small that d.n underflows (non-zero subnormal components)
 // is scaled by a power of two first: t = 2^k t' exactly (direction_scale).
 template <class T>
-T plane_t_exact(T num, T nx, T ny, T nz, T dx, T dy, T dz, T tmin) {
-    if (formulations::parallel_exactly(vec3<T>(dx, dy, dz), vec3<T>(nx, ny, nz))) return infinity<T>;
+T plane_t_exact(T num, T nx, T ny, T nz, T dx, T dy, T dz, T tmin, const vec3<T>& normal) {
+    if (formulations::parallel_exactly(vec3<T>(dx, dy, dz), normal)) return infinity<T>;
     const int k = formulations::direction_scale(vec3<T>(dx, dy, dz));
     const T t = std::ldexp(num / (nx * std::ldexp(dx, k) + ny * std::ldexp(dy, k) + nz * std::ldexp(dz, k)), k);
     return t > tmin ? t : infinity<T>;
