@@ -373,6 +373,14 @@ family<sphere_query<T>> special_sphere_family() {
     add("exact tangent", {0, 1, 5}, {0, 0, -1}, unit, ahead<T>());
     add("sphere behind", {0, 0, 5}, {0, 0, 1}, unit, ahead<T>());
     add("primary ray, image plane at t = 1", {0, 0, 0}, {0, 0, -1}, {{0, 0, -5}, 1, 0}, {T(1), inf});
+    // Finite inputs near T's largest number M, whose o - C overflows (the
+    // first two) or nearly does: the exact hits are t = M, t = 2 - 1/(2
+    // sqrt 3) and t = M/2.
+    const T M = std::numeric_limits<T>::max();
+    add("o - C beyond the largest number, t = M", {0, 0, -M}, {0, 0, 1}, {{0, 0, M}, M, 0}, ahead<T>());
+    add("o - C beyond the largest number, diagonal", {-M, -M, -M}, {M, M, M}, {{M, M, M}, M / 2, 0}, ahead<T>());
+    add("o and C near the largest number, t = M/2", {0, 0, -M / 2}, {0, 0, 1}, {{0, 0, M / 4}, M / 4, 0},
+        ahead<T>());
     return fam;
 }
 

@@ -22,8 +22,8 @@
 // about 1e19 in float, 1e154 in double (|f| or r) they overflow and the ray
 // is missed; below about 1e-19 and 1e-154 they underflow and hits are lost
 // or t has few correct digits. Never a NaN answer. The compensated form
-// needs o - C to be finite (coordinates below half of T's largest number);
-// beyond that it misses.
+// (and so the mixed form in double) quarters o, C and r when one of them is
+// above a quarter of T's largest number, so that o - C cannot overflow.
 #pragma once
 
 #include "error_free.hpp"
@@ -34,6 +34,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <utility>
 
@@ -168,6 +169,20 @@ int scale_exponent(T largest) {
 }  // namespace detail
 
 namespace detail {
+// 2^k t, for a root computed on scaled inputs. The root is within a few
+// ULPs of the exact one, so a result that overflows by at most 4 ULPs of
+// T's largest number is a root at the very top of the range (o at -M, C at
+// +M, r = M: t = M exactly), and is returned as that number.
+template <class T>
+T unscaled_root(T t, int k) {
+    const T y = std::ldexp(t, k);
+    constexpr T top = std::numeric_limits<T>::max();
+    if (std::isinf(y) && std::isfinite(t) &&
+        std::fabs(std::ldexp(t, k - 1)) <= top / 2 * (1 + 4 * std::numeric_limits<T>::epsilon()))
+        return std::copysign(top, t);
+    return y;
+}
+
 // c = f.f - r^2 from its exact pieces: (hi + lo)^2 = hi^2 + 2 hi lo + lo^2,
 // each product split into value and error, then summed in triple
 // precision. For a ray origin a fraction of an ULP off the surface, c is
@@ -254,11 +269,21 @@ template <class T>
 std::optional<T> sphere_compensated(const ray<T>& ray_, const sphere<T>& s, const interval<T>& range) {
     using dw = double_word<T>;
     if (!detail::sphere_inputs_valid(ray_, s)) return std::nullopt;
-    const vec3<T>& o = ray_.origin;
-    const vec3<T>& C = s.center;
+    // o - C overflows when o and C lie near T's largest number on opposite
+    // sides: then o, C and r are quartered first (a power of two: exact, but
+    // for subnormal coordinates, which are negligible next to the others),
+    // and the quarter is undone with the other scaling, at the end.
+    const vec3<T>& o0 = ray_.origin;
+    const vec3<T>& C0 = s.center;
+    constexpr T quarter_above = std::numeric_limits<T>::max() / 4;
+    const bool quartered = std::max({std::fabs(o0.x), std::fabs(o0.y), std::fabs(o0.z), std::fabs(C0.x),
+                                     std::fabs(C0.y), std::fabs(C0.z), s.radius}) > quarter_above;
+    const int eq = quartered ? -2 : 0;
+    const T q4 = quartered ? T(0.25) : T(1);
+    const vec3<T> o = q4 * o0, C = q4 * C0;
     dw f[3] = {two_sum(o.x, -C.x), two_sum(o.y, -C.y), two_sum(o.z, -C.z)};
     T d[3] = {ray_.direction.x, ray_.direction.y, ray_.direction.z};
-    T r = s.radius;
+    T r = q4 * s.radius;
 
     T dmax = std::max({std::fabs(d[0]), std::fabs(d[1]), std::fabs(d[2])});
     if (!(dmax > 0)) return std::nullopt;  // a zero direction meets nothing
@@ -293,11 +318,11 @@ std::optional<T> sphere_compensated(const ray<T>& ray_, const sphere<T>& s, cons
     T c = std::fabs(cw.hi) > ff.hi * T(0x1p-20) ? cw.value() : detail::exact_c_of(f, r2);
 
     auto [t0, t1] = stable_roots(a.value(), h.value(), c, disc.value());
-    // Undo the scaling: |f + t d| = r became |2^ef f + t' 2^ed d| = 2^ef r,
-    // so t = t' 2^(ed - ef).
-    if (ed != ef) {
-        t0 = std::ldexp(t0, ed - ef);
-        t1 = std::ldexp(t1, ed - ef);
+    // Undo the scaling: |f + t d| = r became |2^(ef + eq) f + t' 2^ed d| =
+    // 2^(ef + eq) r, so t = t' 2^(ed - ef - eq).
+    if (ed != ef + eq) {
+        t0 = detail::unscaled_root(t0, ed - ef - eq);
+        t1 = detail::unscaled_root(t1, ed - ef - eq);
     }
     return nearest_in_range(t0, t1, range);
 }
@@ -367,8 +392,8 @@ inline double_word<double> cross_component(float o1, float o2, float c1, float c
 }
 
 // c = f.f - r^2 for the origins nearest the surface, where even
-// c_near_surface (below) cannot vouch for its digits (about 15% of the
-// shadow rays leaving a sphere of radius 1e6). It is rebuilt from the
+// c_near_surface (below) cannot vouch for its digits (about 7% of the
+// study's shadow rays leaving a sphere of radius 1e6). It is rebuilt from the
 // floats, where every product is exact:
 //   * each f_j = o_j - C_j is split into two floats, F_j + L_j (two_sum in
 //     float: exact, whatever the exponents);
