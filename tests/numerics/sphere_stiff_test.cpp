@@ -180,3 +180,23 @@ TEST_CASE_TEMPLATE("chapter 07's solution meets its header on every sphere famil
     }
 }
 #endif
+
+TEST_CASE_TEMPLATE("compensated sphere: finite inputs whose o - C overflows (dyadic cases, exact roots)", T, RT_SCALARS) {
+    // M = T's largest number. Each origin and centre is finite, but o - C is not. The near roots are
+    // M, M and M/4: numbers of T (for M the largest, so a t' rounded above M/4 must come back as M).
+    const T M = std::numeric_limits<T>::max(), h = M / 2;
+    const auto& compensated = fm::sphere_formulation_named("compensated").fn<T>();
+    const interval<T> ahead{T(0), infinity<T>};
+    struct row {
+        ray<T> r;
+        sphere<T> s;
+        T t;
+    };
+    for (const row& c : {row{ray<T>{{0, 0, -M}, {0, 0, 1}}, sphere<T>{{0, 0, M}, M}, M},
+                         row{ray<T>{{-M, 0, 0}, {1, 0, 0}}, sphere<T>{{h, 0, 0}, h}, M},
+                         row{ray<T>{{-M, 0, 0}, {4, 0, 0}}, sphere<T>{{h, 0, 0}, h}, M / 4}}) {
+        const std::optional<T> t = compensated(c.r, c.s, ahead);
+        REQUIRE_MESSAGE(t.has_value(), "a finite input whose o - C overflows was missed");
+        CHECK(ulp_distance(*t, c.t) <= 4);
+    }
+}
