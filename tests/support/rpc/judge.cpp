@@ -27,6 +27,7 @@ namespace {
 struct connection {
     int fd = -1;
     bool cpu_shared = false;     // the runner on fd was told to run on the judge's CPU
+    std::uint64_t generation = 0;  // counts the runners this judge was given
     std::string broken;          // why the runner is gone; empty while it answers
     bool broke_in_case = false;  // it broke during the current test case
 };
@@ -180,6 +181,7 @@ void begin_case(const std::string& name) {
             if (c.fd >= 0) ::close(c.fd);
             c.fd = start_runner(path);
             c.cpu_shared = false;
+            ++c.generation;
             c.broken = c.fd < 0 ? no_runner : "";
         }
         return;
@@ -193,6 +195,7 @@ void begin_case(const std::string& name) {
         if (c.fd >= 0) ::close(c.fd);
         c.fd = fd;
         c.cpu_shared = false;
+        ++c.generation;
         c.broken.clear();
     } else if (what != 'G') {
         if (fd >= 0) ::close(fd);
@@ -201,6 +204,8 @@ void begin_case(const std::string& name) {
 }
 
 bool runner_broke_in_case() { return runner().broke_in_case; }
+
+std::uint64_t runner_generation() { return runner().generation; }
 
 std::string call_remote(const std::string& function, const std::string& arguments) {
     connection& c = runner();

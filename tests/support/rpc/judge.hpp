@@ -35,6 +35,10 @@ void begin_case(const std::string& name);
 // said (a CHECK_THROWS must not count the runner's crash as the exception it expected).
 bool runner_broke_in_case();
 
+// A number that changes whenever the judge's runner is replaced: what a runner remembers from earlier
+// calls (chapter 08's last tree, ch08.cpp) is gone with it.
+std::uint64_t runner_generation();
+
 // Sends one call and waits for its answer; returns the answer's bytes.
 std::string call_remote(const std::string& function, const std::string& arguments);
 
