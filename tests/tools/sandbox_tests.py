@@ -15,6 +15,7 @@ sandbox.json says what must hold (see tests/fixtures/adversarial/README.md).
 import glob
 import json
 import os
+import platform
 import resource
 import shutil
 import stat
@@ -90,12 +91,15 @@ def leftovers(prefix, depth=3):
     return found
 
 
-def sysv_segments_of_sandbox_users():
+def sysv_segments_of_sandbox_users(size=1 << 20):
+    """System V segments of the sandbox users of the size the fixture makes (1 MiB): the sandbox
+    users are machine-wide, and another grading running meanwhile may hold segments of its own."""
     import pwd
     uids = {str(p.pw_uid) for p in pwd.getpwall() if p.pw_name.startswith("rt-grader-")}
     try:
         with open("/proc/sysvipc/shm") as f:
-            return [line for line in f.readlines()[1:] if line.split()[7] in uids]
+            rows = [line.split() for line in f.readlines()[1:]]
+        return [" ".join(r) for r in rows if r[7] in uids and r[3] == str(size)]
     except OSError:
         return []
 
@@ -174,12 +178,20 @@ class SandboxFixture(ToolTest):
 
     def check_mode(self, name, spec, sub, label, env):
         fallback = label != isolation.NAMESPACES
+        # "fallback_as_container_root": the fallback graded as root without CAP_SYS_ADMIN, as in a Docker
+        # container (Gradescope's): bwrap cannot make namespaces there, and the grader must still
+        # install its seccomp filter itself.
+        prefix = ["setpriv", "--bounding-set=-sys_admin", "--"] \
+            if fallback and ROOT and spec.get("fallback_as_container_root") else []
         out = os.path.join(config.work, "out", name, label, "results.json")
         graded = grade(sub, out, spec["chapters"], config.build_dir,
-                       (HANG_LIMITS if name in HANGING_RENDER else LIMITS) + spec.get("options", []), env, timeout=400)
-        print(f"{name} [{label}]: graded in {graded.seconds:.1f} s")
+                       (HANG_LIMITS if name in HANGING_RENDER else LIMITS) + spec.get("options", []), env, timeout=400,
+                       prefix=prefix)
+        print(f"{name} [{label}{' as root without CAP_SYS_ADMIN' if prefix else ''}]: graded in {graded.seconds:.1f} s")
         data = self.assertGraded(graded)
         self.assertEqual("FALLBACK" in graded.stderr, fallback, "the grader did not say its mode")
+        if platform.machine() == "x86_64":
+            self.assertNotIn("no seccomp filter", data["output"], "the grader could not install its filter")
         if fallback:
             self.assertIn("WITHOUT the namespace sandbox", data["output"], "results.json does not warn that "
                           "namespaces were off")
@@ -251,27 +263,6 @@ class SandboxFixture(ToolTest):
 
 
 add_fixture_tests(SandboxFixture, "sandbox-*/sandbox.json")
-
-
-class ContainerRoot(ToolTest):
-    def test_root_without_sys_admin_grades_with_its_filter(self):
-        """Root without CAP_SYS_ADMIN, as in a Docker container (Gradescope's): bwrap cannot make
-        namespaces, the fallback by user runs, and the seccomp filter is still installed (with no new
-        privileges first): sandbox-shared-state's tests are scored as the solution's, nothing leaks."""
-        if not ROOT:
-            self.skipTest("needs root")
-        name = "sandbox-shared-state"
-        with open(os.path.join(FIXTURES, name, "sandbox.json")) as f:
-            spec = json.load(f)
-        sub = make_submission(name, spec)
-        out = os.path.join(config.work, "out", "container-root", "results.json")
-        graded = grade(sub, out, "01", config.build_dir, LIMITS, prefix=["setpriv", "--bounding-set=-sys_admin", "--"])
-        data = self.assertGraded(graded)
-        self.assertIn("FALLBACK", graded.stderr, "namespaces without CAP_SYS_ADMIN?")
-        self.assertNotIn("no seccomp filter", data["output"], "the filter was not installed")
-        self.assertStatuses("container root", data, spec["must_fail"], [], {t["name"]: "passed" for t in data["tests"]})
-        with open(out) as f:
-            self.assertNotIn("LEAK-", f.read())
 
 
 class Outputs(ToolTest):

@@ -289,20 +289,24 @@ def _end_run(pgid, iso, user, token, cgroup):
         _stop_and_kill(lambda: _processes_with_token(token))
 
 
-def _remove_leftovers(uid):
+def _remove_leftovers(uid, gid):
     """Fallback by user: what the run left in world-writable folders and
     System V IPC (there is no private /tmp to discard)."""
     for folder in WORLD_WRITABLE:
         _remove_entries_of(uid, folder, depth=4)
+    # System V objects are removed by their owner, the sandbox user itself: root may remove another
+    # user's only with CAP_SYS_ADMIN, which root in a Docker container lacks (a segment left there
+    # could carry what a runner saw to the next run of that user).
+    remove = []
     for kind, flag, column in (("shm", "-m", 7), ("sem", "-s", 4), ("msg", "-q", 7)):
         try:
             with open(f"/proc/sysvipc/{kind}") as f:
                 rows = [line.split() for line in f.readlines()[1:]]
         except OSError:
             continue
-        for row in rows:
-            if len(row) > column and row[column] == str(uid) and shutil.which("ipcrm"):
-                subprocess.run(["ipcrm", flag, row[1]], capture_output=True)
+        remove += [a for row in rows if len(row) > column and row[column] == str(uid) for a in (flag, row[1])]
+    if remove and shutil.which("ipcrm"):
+        subprocess.run(["ipcrm", *remove], user=uid, group=gid, extra_groups=[], capture_output=True)
 
 
 def _remove_entries_of(uid, folder, depth):
@@ -563,7 +567,7 @@ def run(argv, *, limits, log_path, user=None, inputs=(), scratch=None, env_extra
         if cgroup and any(os.path.isdir(p) for p in cgroup):
             iso.cgroup.kill_and_remove(cgroup)
         if iso.mode != isolation.NAMESPACES and user is not None:
-            _remove_leftovers(user[0])
+            _remove_leftovers(*user)
         if own_cwd:
             fsutil.remove_tree(own_cwd)
     seconds = time.monotonic() - start
