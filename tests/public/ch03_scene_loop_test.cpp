@@ -224,7 +224,7 @@ TEST_CASE_TEMPLATE("each hit shrinks tmax for the objects after it", T, RT_SCALA
     REQUIRE_MESSAGE(hit.has_value(), "every object is hit in (0.25, 100) (" << list(walls) << "); got a miss");
     if (const auto fault = rt::test::fault_in(hit)) {
         const int k = fault->call;
-        const bool in_order = k < 4 && fault->object == k;
+        const bool in_order = k >= 0 && k < 4 && fault->object == k;
         CHECK_MESSAGE(in_order, "test every object exactly once, in order 0, 1, 2, 3; call "
                                     << k + 1 << " asked object " << fault->object);
         if (in_order) {

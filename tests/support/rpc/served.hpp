@@ -76,10 +76,12 @@ std::optional<fault_note<T>> fault_in(const std::optional<hit_record<T>>& hit) {
     if (!hit) return std::nullopt;
     const T z = -hit->normal.z - T(2);
     if (!(z >= T(1) && z <= T(4) && z == std::floor(z))) return std::nullopt;
+    // The answer is the student's: a number that is no int must not be converted to one.
+    const auto as_int = [](T v) { return std::isfinite(v) && std::fabs(v) < T(1e9) ? int(v) : -1; };
     fault_note<T> note;
     note.fault = call_fault(int(z));
-    note.call = int(hit->normal.x);
-    note.object = int(hit->normal.y);
+    note.call = as_int(hit->normal.x);
+    note.object = as_int(hit->normal.y);
     note.range = {hit->point.x, hit->point.y};
     return note;
 }
