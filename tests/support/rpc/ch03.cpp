@@ -1,6 +1,6 @@
 // Chapter 03's exercise functions for the judge and the runner (table.hpp explains the two halves).
-// The intersector travels as the table of hits the test's callback stands for along the call's ray, and
-// is answered in the runner (served.hpp).
+// The intersector travels as a number: the judge answers each object the student's loop asks about
+// (served_wire.hpp), from the table of hits the test's callback stands for along the call's ray.
 #include "served_wire.hpp"
 #include "table.hpp"
 #include "03-scene-loop/scene_loop.hpp"
@@ -11,7 +11,7 @@ template <class T>
 std::optional<hit_record<T>> closest_hit(int object_count, const object_intersector<T>& intersect, const ray<T>& r,
                                          interval<T> range) {
     return RT_RPC_FORWARD_AS(std::optional<hit_record<T>>, closest_hit, object_count,
-                             ::rt::rpc::served_for(intersect, r), r, range);
+                             ::rt::rpc::judge_served(intersect, r), r, range);
 }
 }  // namespace rt::ch03
 #endif

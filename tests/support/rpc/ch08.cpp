@@ -1,8 +1,8 @@
 // Chapter 08's exercise functions for the judge and the runner (table.hpp explains the two halves).
 // A tree argument travels whole (its nodes and order) only when it is not the tree this judge sent to
 // this runner last (the tests ask hundreds of rays through one tree); the leaf intersector travels as
-// the table of hits the test's callback stands for along the call's ray, and is answered in the runner
-// (served.hpp).
+// a number: the judge answers each object the student's traversal asks about (served_wire.hpp), from
+// the table of hits the test's callback stands for along the call's ray.
 #include "08-acceleration/bvh.hpp"
 #include "served_wire.hpp"
 #include "table.hpp"
@@ -92,12 +92,12 @@ bvh<T> build_sah(const std::vector<aabb<T>>& boxes, const build_options& options
 template <class T>
 std::optional<hit_record<T>> closest_hit(const bvh<T>& tree, const leaf_intersector<T>& intersect, const ray<T>& r,
                                          const interval<T>& range) {
-    return RT_RPC_FORWARD_AS(std::optional<hit_record<T>>, closest_hit, tree, ::rt::rpc::served_for(intersect, r), r,
+    return RT_RPC_FORWARD_AS(std::optional<hit_record<T>>, closest_hit, tree, ::rt::rpc::judge_served(intersect, r), r,
                              range);
 }
 template <class T>
 bool any_hit(const bvh<T>& tree, const leaf_intersector<T>& intersect, const ray<T>& r, const interval<T>& range) {
-    return RT_RPC_FORWARD_AS(bool, any_hit, tree, ::rt::rpc::served_for(intersect, r), r, range);
+    return RT_RPC_FORWARD_AS(bool, any_hit, tree, ::rt::rpc::judge_served(intersect, r), r, range);
 }
 }  // namespace rt::ch08
 #endif

@@ -54,7 +54,7 @@ message channel::receive() {
     std::string frame(size, '\0');
     read_all(fd_, frame.data(), size);
     const auto what = static_cast<std::uint8_t>(frame[0]);
-    if (what < 1 || what > 4) throw protocol_error("a message of unknown kind");
+    if (what < 1 || what > 6) throw protocol_error("a message of unknown kind");
     return {static_cast<kind>(what), frame.substr(1)};
 }
 

@@ -207,6 +207,36 @@ bool runner_broke_in_case() { return runner().broke_in_case; }
 
 std::uint64_t runner_generation() { return runner().generation; }
 
+namespace {
+std::vector<erased_callback>& callbacks() {
+    static std::vector<erased_callback> kept;
+    return kept;
+}
+}  // namespace
+
+callback_scope::callback_scope() : mark_(callbacks().size()) {}
+callback_scope::~callback_scope() { callbacks().resize(mark_); }
+
+std::uint32_t judge_keep_callback(erased_callback f) {
+    callbacks().push_back(std::move(f));
+    return static_cast<std::uint32_t>(callbacks().size() - 1);
+}
+
+// A call_back from the runner: the callback's number and its arguments, answered from the judge's own
+// copy. Whatever the runner sent is only data here: an unknown number or short arguments end the runner.
+std::string answer_call_back(const std::string& bytes) {
+    reader r(bytes);
+    std::uint32_t id = 0;
+    get(r, id);
+    if (id >= callbacks().size()) throw protocol_error("a callback that was never given");
+    const std::string arguments = bytes.substr(4);  // the reader keeps a view: the string must outlive it
+    reader in(arguments);
+    writer out;
+    callbacks()[id](in, out);
+    if (in.remaining() != 0) throw protocol_error("a callback's arguments longer than expected");
+    return out.bytes();
+}
+
 std::string call_remote(const std::string& function, const std::string& arguments) {
     connection& c = runner();
     if (!c.broken.empty()) throw runner_gone(c.broken);
@@ -217,10 +247,16 @@ std::string call_remote(const std::string& function, const std::string& argument
         put(call, function);
         call.raw(arguments.data(), arguments.size());
         ch.send(kind::call, call.bytes());
-        const message m = ch.receive();
-        if (m.what == kind::answer) return m.bytes;
-        if (m.what != kind::threw) throw protocol_error("a message the judge did not ask for");
-        throw_described(m.bytes, [&](exception_kind k, const std::string& t) { return retell(function, k, t); });
+        for (;;) {
+            const message m = ch.receive();
+            if (m.what == kind::answer) return m.bytes;
+            if (m.what == kind::call_back) {
+                ch.send(kind::call_back_answer, answer_call_back(m.bytes));
+                continue;
+            }
+            if (m.what != kind::threw) throw protocol_error("a message the judge did not ask for");
+            throw_described(m.bytes, [&](exception_kind k, const std::string& t) { return retell(function, k, t); });
+        }
     } catch (const protocol_error& e) {
         gone(c, function, e.what());
     }

@@ -39,7 +39,19 @@ bool runner_broke_in_case();
 // calls (chapter 08's last tree, ch08.cpp) is gone with it.
 std::uint64_t runner_generation();
 
-// Sends one call and waits for its answer; returns the answer's bytes.
+// Callbacks registered while one call's arguments are written live exactly as long as that call.
+class callback_scope {
+public:
+    callback_scope();
+    ~callback_scope();
+    callback_scope(const callback_scope&) = delete;
+    callback_scope& operator=(const callback_scope&) = delete;
+
+private:
+    std::size_t mark_;
+};
+
+// Sends one call, answers the runner's call_back messages until the answer comes; returns its bytes.
 std::string call_remote(const std::string& function, const std::string& arguments);
 
 template <class T>
@@ -49,6 +61,7 @@ std::string call_name(const char* function) {
 
 template <class R, class... A>
 R forward(const std::string& function, const A&... arguments) {
+    callback_scope scope;
     writer w;
     (put(w, arguments), ...);
     const std::string answer = call_remote(function, w.bytes());

@@ -1,17 +1,17 @@
 // served.hpp — callbacks the tests give an exercise, as data (tools/grader/README.md, "Who decides").
 //
 // Chapter 03's closest_hit and chapter 08's traversal call back "does the ray hit object i inside this
-// range?". Under the grader the student's code runs in the runner and the tests in the judge, so such a
-// callback must be answered inside the runner without any instructor intersection code there (this file
-// is in the student kit, and the kit holds nothing that computes an exercise's answer). So a test's
-// callback is a TABLE made by the judge for the one ray of the call: every hit that object i's own test
+// range?". Under the grader the student's code runs in the runner and the tests in the judge. A test's
+// callback is a TABLE the judge makes for the one ray of the call: every hit that object i's own test
 // (the reference sphere, triangle, a test's "wall") gives along that ray, in increasing t. Asked about
 // object i in an open range, the table answers the first of object i's hits inside the range: exactly
 // what the object's test answers, because a shape test returns its smallest t inside the range, and the
-// table holds all of them (see table_for below).
+// table holds all of them (see table_for below). The table stays in the judge: the runner sends each
+// call's arguments and gets the answer back (served_wire.hpp says why).
 //
-// How the code under test uses the callback is checked by the judge from the answers only, never from a
-// log the runner keeps (the runner is the student's process). A call that breaks a rule of the test:
+// How the code under test uses the callback is decided from the calls the judge itself answered and
+// from the exercise's answer, never from a log the runner keeps (the runner is the student's process).
+// A call that breaks a rule of the test:
 //   * beyond the test's call budget (an empty scene asks nothing; a pruned traversal asks few objects),
 //   * about an object that does not exist, or about another ray than the call's,
 //   * not the call the test expects next (chapter 03: objects 0, 1, 2, ... with tmax shrunk),
@@ -111,7 +111,7 @@ struct hit_table {
     std::vector<expected_call<T>> expected;
 };
 
-// Answers calls from a table (in the runner, or in the test's own process), call after call.
+// Answers calls from a table (in the judge, or in the test's own process), call after call.
 template <class T>
 class table_server {
 public:
@@ -176,7 +176,7 @@ private:
 
 // The callable a test gives as its callback (chapter 03's object_intersector, chapter 08's
 // leaf_intersector): objects 0 .. count-1, each tested by `test` (instructor code: it runs in the judge,
-// or in the test's own process), with the test's rules. In the judge, its table_for() is what travels;
+// or in the test's own process), with the test's rules. In the judge, its table_for() answers the runner;
 // in the test's own process (a student's build) it answers through the same table_server, one table per
 // ray, so the tests behave the same in both places.
 template <class T>
@@ -230,19 +230,6 @@ struct served_objects {
         hit = *answer;
         hit.object = i;
         return true;
-    }
-};
-
-// What the runner makes of a table it received: the same answers, from the data alone.
-template <class T>
-struct served_table {
-    std::shared_ptr<table_server<T>> server;
-
-    std::optional<hit_record<T>> operator()(int i, const ray<T>& r, const interval<T>& range) const {
-        return server->answer(i, r, range);
-    }
-    bool operator()(int i, const ray<T>& r, const interval<T>& range, hit_record<T>& hit) const {
-        return served_objects<T>::fill(server->answer(i, r, range), i, hit);
     }
 };
 

@@ -1,25 +1,26 @@
-// served_wire.hpp — how a served callback travels (served.hpp says what it is).
+// served_wire.hpp — how the tests' callbacks travel (served.hpp says what they are).
 //
-// The judge's stub turns the test's callback into the table for the call's ray (served_for) and sends
-// that; the runner reads the table into a callback that answers from it (get below). Nothing goes back:
-// the student's code only ever calls the table, and the judge only ever sees the exercise's answer.
+// Chapter 03's intersector and chapter 08's leaf test: the judge answers every call. Its stub turns the
+// test's callback into the table of hits along the call's ray, kept in a table_server IN THE JUDGE with
+// the test's rules (budget, expected calls); the runner gets a function that sends each call's arguments
+// to the judge and returns the judge's answer. They are not answered from data in the runner: whatever
+// the runner holds, the student's code can read (the red team's closest_hit read a table of every
+// object's hits through std::function::target and scored 86/90 without a loop), and how the code uses
+// the callback (order, shrinking tmax, pruning) is only known to the judge if the judge sees the calls.
+//
+// Chapter 06's occlusion test: the answers to the questions shade() may ask travel with the call and
+// are answered in the runner. Reading them instead of asking gains nothing: they are the lights'
+// blocked-or-not, which shade() needs anyway, and each question must still be one of shadow_ray's.
 #pragma once
 
 #include "served.hpp"
 #include "wire.hpp"
 
+#include <memory>
 #include <stdexcept>
 
 namespace rt::test {
-// The served structs travel like the course's others (wire.hpp).
-template <class T, class F>
-void fields(expected_call<T>& x, F&& f) {
-    f(x.object, x.range);
-}
-template <class T, class F>
-void fields(hit_table<T>& x, F&& f) {
-    f(x.r, x.count, x.owner, x.records, x.budget, x.check_calls, x.expected);
-}
+// The occlusion answers travel like the course's other structs (wire.hpp).
 template <class T, class F>
 void fields(shadow_answer<T>& x, F&& f) {
     f(x.r, x.range, x.blocked);
@@ -33,32 +34,68 @@ void fields(occlusion_table<T>& x, F&& f) {
 namespace rt::rpc {
 
 // Judge side: the table a test's callback stands for, for this call's ray. A callback that is not a
-// served kind cannot run in the runner (it would have to call back into the judge): a test error.
+// served kind cannot be answered by the grader: a test error.
 template <class T, class Callback>
 test::hit_table<T> served_for(const Callback& f, const ray<T>& r) {
     const auto* served = f.template target<test::served_objects<T>>();
     if (served == nullptr)
         throw std::logic_error("a test gave a callback that is not rt::test::served_objects "
-                               "(tests/support/rpc/served.hpp): the grader cannot answer it in the runner");
+                               "(tests/support/rpc/served.hpp): the grader cannot answer it");
     return served->table_for(served->only_ray ? *served->only_ray : r);
 }
 
-// Runner side: a callback parameter (std::function of either form) is read as a table and answers from it.
-template <class T, class Signature>
-void get_served(reader& r, std::function<Signature>& f) {
-    test::hit_table<T> table;
-    get(r, table);
-    if (table.owner.size() != table.records.size()) throw protocol_error("a hit table with a record per owner missing");
-    f = test::served_table<T>{std::make_shared<test::table_server<T>>(std::move(table))};
+// Judge side: what an object callback argument becomes for one call. put() registers its server with
+// the call (judge.cpp keeps it until the call's answer) and sends only its number.
+template <class T>
+struct judge_callback {
+    std::shared_ptr<test::table_server<T>> server;
+};
+
+template <class T, class Callback>
+judge_callback<T> judge_served(const Callback& f, const ray<T>& r) {
+    return {std::make_shared<test::table_server<T>>(served_for(f, r))};
+}
+
+template <class T>
+void put(writer& w, const judge_callback<T>& c) {
+    put(w, judge_keep_callback([server = c.server](reader& in, writer& out) {
+        int i = 0;
+        ray<T> r{};
+        interval<T> range{};
+        get(in, i);
+        get(in, r);
+        get(in, range);
+        put(out, server->answer(i, r, range));
+    }));
+}
+
+// Runner side: the student's code calls this; it asks the judge.
+template <class T>
+std::optional<hit_record<T>> ask_judge(std::uint32_t id, int i, const ray<T>& r, const interval<T>& range) {
+    writer arguments;
+    put(arguments, i);
+    put(arguments, r);
+    put(arguments, range);
+    const std::string answer = runner_call_back(id, arguments.bytes());
+    reader in(answer);
+    std::optional<hit_record<T>> hit;
+    get(in, hit);
+    return hit;
 }
 
 template <class T>
 void get(reader& r, std::function<std::optional<hit_record<T>>(int, const ray<T>&, const interval<T>&)>& f) {
-    get_served<T>(r, f);
+    std::uint32_t id = 0;
+    get(r, id);
+    f = [id](int i, const ray<T>& ray_, const interval<T>& range) { return ask_judge(id, i, ray_, range); };
 }
 template <class T>
 void get(reader& r, std::function<bool(int, const ray<T>&, const interval<T>&, hit_record<T>&)>& f) {
-    get_served<T>(r, f);
+    std::uint32_t id = 0;
+    get(r, id);
+    f = [id](int i, const ray<T>& ray_, const interval<T>& range, hit_record<T>& hit) {
+        return test::served_objects<T>::fill(ask_judge(id, i, ray_, range), i, hit);
+    };
 }
 
 // Chapter 06's occlusion test: the runner answers from the judge's table (served.hpp).

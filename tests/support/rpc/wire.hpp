@@ -156,8 +156,14 @@ void get(reader& r, std::vector<T>& v) {
 }
 
 // --- callbacks ------------------------------------------------------------------------------------------
-// A std::function argument (chapter 03's intersector, 06's occlusion test, 08's leaf test) has no put():
-// it never crosses as code. The judge's stub sends the data the test's callback stands for, and the
-// runner answers the student's calls from that data (served.hpp, served_wire.hpp).
+// An object callback (chapter 03's intersector, chapter 08's leaf test) travels as a number: the judge
+// keeps what answers it and the runner's code asks the judge for every call (served_wire.hpp).
+using erased_callback = std::function<void(reader& arguments, writer& result)>;
+std::uint32_t judge_keep_callback(erased_callback f);                          // judge side (judge.cpp)
+std::string runner_call_back(std::uint32_t id, const std::string& arguments);  // runner side (runner.cpp)
+
+// A std::function argument has no put(): it never crosses as code. The judge's stub sends what the
+// test's callback stands for: a number for an object callback, the answers for chapter 06's occlusion
+// test (served.hpp, served_wire.hpp).
 
 }  // namespace rt::rpc
