@@ -192,6 +192,33 @@ class JudgeLimits(ToolTest):
         self.assertLessEqual(judge.JUDGE_MEMORY_BYTES, 4096 << 20)
 
 
+class CallbackTables(ToolTest):
+    """Chapter 03's intersector is answered by the judge, call by call: a closest_hit that reads the
+    callback's data instead of calling it (tests/fixtures/callbacks/reads-served-table.cpp, which scored
+    86/90 while the answers were a table in the runner) finds nothing to read and scores what a
+    closest_hit that always misses scores."""
+
+    USE_TESTS = ["ch03.hidden.each object is tested with tmax shrunk to the closest hit so far",
+                 "ch03.public.each hit shrinks tmax for the objects after it",
+                 "ch03.hidden.random scenes of walls give the nearest hit",
+                 "ch03.hidden.random scenes of spheres agree with testing every sphere"]
+
+    def test_reading_the_callback_instead_of_calling_it_gains_nothing(self):
+        folder = os.path.join(config.work, "reads-served-table")
+        shutil.rmtree(folder, ignore_errors=True)
+        with open(os.path.join(REPO, "tests", "fixtures", "callbacks", "reads-served-table.cpp")) as f:
+            make_submission(folder, files={"scene_loop.cpp": f.read()})
+        out = os.path.join(config.work, "reads-served-table.json")
+        graded = grade(folder, out, "03", config.build_dir, TEST_LIMITS)
+        results = self.assertValidResults(out)
+        status = {t["name"]: t["status"] for t in results["tests"]}
+        for name in self.USE_TESTS:
+            for scalar in ("float", "double"):
+                self.assertEqual(status.get(f"{name}<{scalar}>"), "failed", f"{name}<{scalar}>: {graded.stdout[-500:]}")
+        total = sum(t.get("max_score", 0) for t in results["tests"])
+        self.assertLess(results["score"], total / 4, "more than a closest_hit that always misses would score")
+
+
 class Batch(ToolTest):
     def test_batch_grades_each_submission_and_writes_the_scores(self):
         """Each submission gets its results and a row of scores.csv; mallory's file includes alice's
