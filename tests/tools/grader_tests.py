@@ -218,6 +218,24 @@ class CallbackTables(ToolTest):
         total = sum(t.get("max_score", 0) for t in results["tests"])
         self.assertLess(results["score"], total / 4, "more than a closest_hit that always misses would score")
 
+    def test_catching_the_occlusion_tests_error_gains_nothing(self):
+        """Chapter 06: the solution's shade() patched to ask about lights below the surface too and to
+        swallow the error such a question raises (tests/fixtures/callbacks/catches-occlusion-error.patch).
+        The judge notes the question and throws after the call, where the student's code cannot catch it."""
+        work = os.path.join(config.work, "catches-occlusion-error")
+        shutil.rmtree(work, ignore_errors=True)
+        shutil.copytree(os.path.join(REPO, "solutions", "06-shading"), os.path.join(work, "src", "solutions", "06-shading"))
+        with open(os.path.join(REPO, "tests", "fixtures", "callbacks", "catches-occlusion-error.patch")) as patch:
+            subprocess.run(["patch", "-s", "-p1", "-d", os.path.join(work, "src")], stdin=patch, check=True)
+        with open(os.path.join(work, "src", "solutions", "06-shading", "shading.cpp")) as f:
+            folder = make_submission(os.path.join(work, "sub"), files={"shading.cpp": f.read()})
+        out = os.path.join(work, "results.json")
+        graded = grade(folder, out, "06", config.build_dir, TEST_LIMITS)
+        status = {t["name"]: t["status"] for t in self.assertValidResults(out)["tests"]}
+        for scalar in ("float", "double"):
+            name = f"ch06.hidden.hidden: a light below the surface sends no shadow ray<{scalar}>"
+            self.assertEqual(status.get(name), "failed", f"{name}: {graded.stdout[-500:]}")
+
 
 class Batch(ToolTest):
     def test_batch_grades_each_submission_and_writes_the_scores(self):

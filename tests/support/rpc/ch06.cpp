@@ -1,7 +1,7 @@
 // Chapter 06's exercise functions for the judge and the runner (table.hpp explains the two halves).
-// The occlusion test travels as a table: the shadow queries shade() may ask (the student's own
-// shadow_ray for every light, on both sides of the surface) with the test's answer to each, answered in
-// the runner (served.hpp).
+// The occlusion test travels as a number: the judge keeps the shadow queries shade() may ask (the
+// student's own shadow_ray for every light, on both sides of the surface) with the test's answer to
+// each, and answers every question the runner sends (served.hpp, served_wire.hpp).
 #include "served_wire.hpp"
 #include "table.hpp"
 #include "06-shading/shading.hpp"
@@ -36,7 +36,7 @@ shadow_query<T> shadow_ray(const vec3<T>& point, const vec3<T>& normal, const ve
 // The occlusion table for one call of shade(): asks the runner for shadow_ray() of every light on
 // both sides of the surface (a light or point shadow_ray refuses is left out: shade() cannot ask it).
 template <class T>
-test::occlusion_table<T> occlusion_for(const occlusion_test<T>& occluded, const vec3<T>& point, const vec3<T>& normal,
+rpc::judge_occlusion<T> occlusion_for(const occlusion_test<T>& occluded, const vec3<T>& point, const vec3<T>& normal,
                                        const std::vector<point_light>& lights) {
     const auto* served = occluded.template target<test::served_occlusion<T>>();
     if (served == nullptr)
@@ -53,15 +53,31 @@ test::occlusion_table<T> occlusion_for(const occlusion_test<T>& occluded, const 
             } catch (const std::exception&) {
             }
         }
-    return served->table_for(questions);
+    return {std::make_shared<test::occlusion_server<T>>(served->table_for(questions))};
 }
 #endif
 
 template <class T>
 color shade(const vec3<T>& point, const vec3<T>& normal, const vec3<T>& to_viewer, const material& m,
             const std::vector<point_light>& lights, const color& ambient, const occlusion_test<T>& occluded) {
-    return RT_RPC_FORWARD_AS(color, shade, point, normal, to_viewer, m, lights, ambient,
-                             occlusion_for(occluded, point, normal, lights));
+#if defined(RT_RPC_JUDGE)
+    // A question shade() should not have asked is noted by the judge during the call; it is thrown
+    // here, in the judge, where the student's code cannot catch it.
+    const rpc::judge_occlusion<T> asked = occlusion_for(occluded, point, normal, lights);
+    color answer;
+    try {
+        answer = RT_RPC_FORWARD_AS(color, shade, point, normal, to_viewer, m, lights, ambient, asked);
+    } catch (const rpc::runner_gone&) {
+        throw;
+    } catch (...) {
+        if (!asked.fault->empty()) throw std::logic_error(*asked.fault);
+        throw;
+    }
+    if (!asked.fault->empty()) throw std::logic_error(*asked.fault);
+    return answer;
+#else
+    return RT_RPC_FORWARD_AS(color, shade, point, normal, to_viewer, m, lights, ambient, occluded);
+#endif
 }
 }  // namespace rt::ch06
 #endif

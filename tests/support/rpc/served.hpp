@@ -238,9 +238,10 @@ struct served_objects {
 // shade() asks occluded(q.r, q.range) with q = shadow_ray(point, n, light) for each light above the
 // surface (shading.hpp). The judge knows the point, the normal and the lights of the call, so it asks
 // the student's own shadow_ray for every light (on both sides of the surface: which side shade() takes
-// is the student's arithmetic) and sends each query with the answer the test's occlusion test gives it.
-// The runner answers a question that is exactly one of these; any other question, or one beyond the
-// test's budget, throws std::logic_error out of shade() (a bool answer has no room for a fault record).
+// is the student's arithmetic) and keeps each query with the answer the test's occlusion test gives it.
+// It answers the runner's questions from that list; any other question, or one beyond the test's
+// budget, makes the judge throw std::logic_error out of shade() once the call is over (a bool answer
+// has no room for a fault record, and an exception thrown in the runner could be caught there).
 
 // One question shade() may ask and the test's answer to it.
 template <class T>
@@ -303,12 +304,6 @@ struct served_occlusion {
         if (budget >= 0 && (*calls)++ >= budget) throw std::logic_error(occlusion_over_budget);
         return blocked(r, range);
     }
-};
-
-template <class T>
-struct served_occlusion_table {
-    std::shared_ptr<occlusion_server<T>> server;
-    bool operator()(const ray<T>& r, const interval<T>& range) const { return server->answer(r, range); }
 };
 
 // Nothing blocks, everything blocks: the two plain occlusion tests.

@@ -8,9 +8,10 @@
 // object's hits through std::function::target and scored 86/90 without a loop), and how the code uses
 // the callback (order, shrinking tmax, pruning) is only known to the judge if the judge sees the calls.
 //
-// Chapter 06's occlusion test: the answers to the questions shade() may ask travel with the call and
-// are answered in the runner. Reading them instead of asking gains nothing: they are the lights'
-// blocked-or-not, which shade() needs anyway, and each question must still be one of shadow_ray's.
+// Chapter 06's occlusion test goes the same way: the judge keeps the answers to the questions shade()
+// may ask and answers each question the runner sends. A question off the list or over the budget is
+// noted in the judge, and the judge's stub throws std::logic_error out of shade() after the call: an
+// exception thrown inside the runner could be caught there by the student's own shade().
 #pragma once
 
 #include "served.hpp"
@@ -18,18 +19,6 @@
 
 #include <memory>
 #include <stdexcept>
-
-namespace rt::test {
-// The occlusion answers travel like the course's other structs (wire.hpp).
-template <class T, class F>
-void fields(shadow_answer<T>& x, F&& f) {
-    f(x.r, x.range, x.blocked);
-}
-template <class T, class F>
-void fields(occlusion_table<T>& x, F&& f) {
-    f(x.answers, x.budget);
-}
-}  // namespace rt::test
 
 namespace rt::rpc {
 
@@ -98,12 +87,46 @@ void get(reader& r, std::function<bool(int, const ray<T>&, const interval<T>&, h
     };
 }
 
-// Chapter 06's occlusion test: the runner answers from the judge's table (served.hpp).
+// Chapter 06, judge side: the occlusion answers of one call of shade(), and the first rule a question
+// broke (empty while none did). put() registers them with the call and sends only a number.
+template <class T>
+struct judge_occlusion {
+    std::shared_ptr<test::occlusion_server<T>> server;
+    std::shared_ptr<std::string> fault = std::make_shared<std::string>();
+};
+
+template <class T>
+void put(writer& w, const judge_occlusion<T>& c) {
+    put(w, judge_keep_callback([server = c.server, fault = c.fault](reader& in, writer& out) {
+        ray<T> r{};
+        interval<T> range{};
+        get(in, r);
+        get(in, range);
+        bool blocked = false;
+        try {
+            blocked = server->answer(r, range);
+        } catch (const std::logic_error& e) {
+            if (fault->empty()) *fault = e.what();
+        }
+        put(out, blocked);
+    }));
+}
+
+// Runner side: the student's shade() calls this; it asks the judge.
 template <class T>
 void get(reader& r, std::function<bool(const ray<T>&, const interval<T>&)>& f) {
-    test::occlusion_table<T> table;
-    get(r, table);
-    f = test::served_occlusion_table<T>{std::make_shared<test::occlusion_server<T>>(std::move(table))};
+    std::uint32_t id = 0;
+    get(r, id);
+    f = [id](const ray<T>& ray_, const interval<T>& range) {
+        writer arguments;
+        put(arguments, ray_);
+        put(arguments, range);
+        const std::string answer = runner_call_back(id, arguments.bytes());
+        reader in(answer);
+        bool blocked = false;
+        get(in, blocked);
+        return blocked;
+    };
 }
 
 }  // namespace rt::rpc
