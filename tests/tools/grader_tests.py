@@ -179,6 +179,18 @@ class ProgramOutput(ToolTest):
         self.assertIn("SOLUTION-BYTES", self.said([], True))
         self.assertIn("SOLUTION-BYTES", self.said(["02", "03"], False))     # a kit: the student's own code
 
+    def figures(self, depends, has_solutions):
+        from types import SimpleNamespace
+        from rtgrader import grading
+        grader = grading.Grader.__new__(grading.Grader)
+        grader.tree = SimpleNamespace(has_solutions=has_solutions)
+        return grader._figures_shown({"depends": depends}, "MISMATCH: 28659 of 120000 pixels differ")
+
+    def test_imgcmp_figures_hidden_when_the_program_holds_solutions(self):
+        self.assertNotIn("28659", self.figures(["02"], True))
+        self.assertIn("28659", self.figures([], True))
+        self.assertIn("28659", self.figures(["02"], False))
+
 
 class JudgeLimits(ToolTest):
     """The judge runs as the grader's user (root) outside the sandbox and decodes what the student's

@@ -485,6 +485,7 @@ class Grader:
             return False, "the chapter program did not write its picture"
         fsutil.write_new(renders, os.path.basename(actual), picture)
         figures, matched, diff_png = self._imgcmp(ch, picture, logs, user)
+        figures = self._figures_shown(ch, figures)
         if diff_png:
             fsutil.write_new(renders, os.path.basename(diff), diff_png)
         where = f"your render: {actual}" + (f"\ndifference image: {diff}" if diff_png else "")
@@ -493,17 +494,33 @@ class Grader:
         return False, (f"the picture differs from the reference render beyond tolerance: {figures}\n{where}\n"
                        "Open the difference image to see where.")
 
+    def _course_code_in(self, ch):
+        """'' or the earlier chapters whose course code the chapter program holds. When grading with
+        the solutions, a chapter's program links the earlier chapters it builds on from the
+        solutions (one mistake is charged once): the student's code could read that code's bytes
+        and carry them out in anything the feedback shows of the program's run."""
+        if ch.get("depends") and self.tree.has_solutions:
+            return ("chapters " if len(ch["depends"]) > 1 else "chapter ") + ", ".join(ch["depends"])
+        return ""
+
     def _program_said(self, ch, output):
         """What the feedback shows of the chapter program's output: as it printed it (no pattern is
-        run over a student's output), unless the program also holds the course's own code. When
-        grading with the solutions, a chapter's program links the earlier chapters it builds on
-        from the solutions (one mistake is charged once): the student's code could print that
-        code's bytes, and with them an earlier chapter's answer."""
-        if ch.get("depends") and self.tree.has_solutions:
-            which = ("chapters " if len(ch["depends"]) > 1 else "chapter ") + ", ".join(ch["depends"])
+        run over a student's output), unless the program also holds the course's own code."""
+        which = self._course_code_in(ch)
+        if which:
             return f"(the program's output is not shown: it also holds the course's own code of {which}; " \
                    "run it in your kit to see it)"
         return trim(output, 1000)
+
+    def _figures_shown(self, ch, figures):
+        """imgcmp's figures on the program's picture (pixels that differ, the largest difference),
+        unless the program holds the course's own code: its picture could encode those bytes in the
+        figures (about 25 bits a grading). Then only match or not is shown, one bit."""
+        which = self._course_code_in(ch)
+        if which:
+            return f"(figures not shown: the program also holds the course's own code of {which}; " \
+                   "compare your render in your kit with imgcmp)"
+        return figures
 
     def _imgcmp(self, ch, picture, logs, user):
         """imgcmp on the student's picture, as the sandbox user with limits (it
