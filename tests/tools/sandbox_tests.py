@@ -22,6 +22,7 @@ import stat
 import struct
 import subprocess
 import sys
+import tempfile
 import time
 import zlib
 
@@ -331,6 +332,18 @@ class Imgcmp(ToolTest):
 UNPRIVILEGED_USER = "rt-grader-unpriv"
 
 
+def reachable_by_everyone(path):
+    """Whether every folder from / down to path lets any user through (the x bit for others)."""
+    path = os.path.abspath(path)
+    while True:
+        if not os.stat(path).st_mode & stat.S_IXOTH:
+            return False
+        parent = os.path.dirname(path)
+        if parent == path:
+            return True
+        path = parent
+
+
 class PrivateClone(ToolTest):
     def test_a_clone_in_a_private_folder_grades_in_both_modes(self):
         """The repository copied into a 0700 folder (like root's home) grades a
@@ -338,13 +351,27 @@ class PrivateClone(ToolTest):
         root, the clone is given to an ordinary user, who grades in it again: with
         unprivileged bubblewrap (namespaces mode) where the kernel allows it, else
         with the loud fallback."""
-        private = os.path.join(config.work, "private")
+        # The ordinary user must be able to reach the folders it is given. When this repository is
+        # itself cloned in a private folder (root's home, 0700), the test's own work folder is out
+        # of that user's reach: the test then works in a fresh folder under the system's temp folder.
+        base = config.work
+        if not reachable_by_everyone(base):
+            base = tempfile.mkdtemp(prefix="rt-private-clone-")
+            os.chmod(base, 0o755)       # the way in; "private" below stays 0700, as a home folder
+        try:
+            self.grade_private_clone(base)
+        finally:
+            if base != config.work:
+                shutil.rmtree(base, ignore_errors=True)
+
+    def grade_private_clone(self, base):
+        private = os.path.join(base, "private")
         shutil.rmtree(private, ignore_errors=True)
         os.makedirs(private)
         os.chmod(private, 0o700)
         clone = os.path.join(private, "repo")
         shutil.copytree(REPO, clone, ignore=shutil.ignore_patterns("build", "build-*", ".git", "__pycache__"))
-        sub = os.path.join(config.work, "sub", "private-clone")
+        sub = os.path.join(base, "sub", "private-clone")
         shutil.rmtree(sub, ignore_errors=True)
         shutil.copytree(solution_folder("01"), os.path.join(sub, "chapters", os.path.basename(solution_folder("01"))))
         for label, env in modes():
