@@ -30,8 +30,8 @@ T never() {
 }
 
 // Object i is met at walls[i]; its record's normal is (tags[i], 0, 1). A
-// served callback (tests/support/rpc/served.hpp): answered in the runner from
-// a table of the walls for the call's ray. A call about an object outside
+// served callback (tests/support/rpc/served.hpp): the judge answers each call
+// of the runner with the walls' own test. A call about an object outside
 // 0 .. n-1, beyond a budget, or other than the expected next one is answered
 // with a fault record (a hit nearer than any), found in the answer by fault_in().
 template <class T>

@@ -92,9 +92,9 @@ ld reference_blinn_phong(const vec3<T>& n, const vec3<T>& l, const vec3<T>& v, l
     return c > 0 ? std::pow(std::fmin(c, ld(1)), shininess) : ld(0);
 }
 
-// The plain occlusion tests, served ones (tests/support/rpc/served.hpp): in
-// the runner, shade() gets a table of the shadow rays it may ask (the
-// student's own shadow_ray() for each light) with the answer to each.
+// The plain occlusion tests, served ones (tests/support/rpc/served.hpp): the
+// judge answers the shadow rays shade() may ask (the student's own
+// shadow_ray() for each light) and notes any other question.
 template <class T>
 ch06::occlusion_test<T> nothing_blocks() {
     return rt::test::nothing_blocks<T>();

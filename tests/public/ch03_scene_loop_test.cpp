@@ -24,9 +24,9 @@ namespace {
 // tells the walls apart: (i, 0, 0) + (0, 0, 1), so we can check that the
 // loop hands back the record of the object it says it hit.
 //
-// The callback is a served one (tests/support/rpc/served.hpp): the grader
-// answers it in the process that runs your code, from a table of the walls
-// made for the call's ray. The test's rules for the calls travel with it:
+// The callback is a served one (tests/support/rpc/served.hpp): under the
+// grader, each call your loop makes is answered by the grader's own process,
+// with the same walls. The test's rules for the calls go with it:
 // `budget` limits how many calls there may be, `expected` lists the calls
 // in the order they must come. A call that breaks a rule is answered with a
 // fault record, a hit nearer than any other, which rt::test::fault_in()

@@ -43,9 +43,10 @@ point_light light_at(vec3d p, float intensity) {
 }
 
 // An occlusion test over one sphere, with chapter 02's intersection. It is a
-// served one (tests/support/rpc/served.hpp): under the grader, your shade()
-// gets a table of the shadow rays it may ask about (your own shadow_ray() for
-// each light) with this test's answer to each; asking about another ray throws.
+// served one (tests/support/rpc/served.hpp): under the grader, the grader's
+// own process answers each shadow ray your shade() asks about, and only the
+// ones your own shadow_ray() gives for the lights; asking about another ray
+// makes shade() throw.
 template <class T>
 ch06::occlusion_test<T> blocked_by(const sphere<T>& blocker) {
     return rt::test::served_occlusion<T>{[blocker](const ray<T>& r, const interval<T>& range) {

@@ -48,9 +48,9 @@ struct objects {
     }
 
     // The same in the form the tree asks it (leaf_intersector). It is a served
-    // callback (tests/support/rpc/served.hpp): under the grader it is answered
-    // in the process running your code, from a table of every object's hits
-    // along the call's ray. `budget` limits how many objects one call may ask:
+    // callback (tests/support/rpc/served.hpp): under the grader the grader's
+    // own process answers each object your traversal asks about, with the
+    // same test. `budget` limits how many objects one call may ask:
     // an ask beyond it is answered with a fault record, a hit nearer than any
     // other, which fault_in() recognises in the traversal's answer.
     leaf_intersector<T> intersector(long budget = -1) const {

@@ -1,6 +1,6 @@
 // Chapter 03's exercise functions for the judge and the runner (table.hpp explains the two halves).
 // The intersector travels as a number: the judge answers each object the student's loop asks about
-// (served_wire.hpp), from the table of hits the test's callback stands for along the call's ray.
+// (served_wire.hpp) with the object's own test, under the test's rules (served.hpp).
 #include "served_wire.hpp"
 #include "table.hpp"
 #include "03-scene-loop/scene_loop.hpp"

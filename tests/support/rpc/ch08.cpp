@@ -1,8 +1,8 @@
 // Chapter 08's exercise functions for the judge and the runner (table.hpp explains the two halves).
 // A tree argument travels whole (its nodes and order) only when it is not the tree this judge sent to
 // this runner last (the tests ask hundreds of rays through one tree); the leaf intersector travels as
-// a number: the judge answers each object the student's traversal asks about (served_wire.hpp), from
-// the table of hits the test's callback stands for along the call's ray.
+// a number: the judge answers each object the student's traversal asks about (served_wire.hpp) with
+// the object's own test, under the test's rules (served.hpp).
 #include "08-acceleration/bvh.hpp"
 #include "served_wire.hpp"
 #include "table.hpp"

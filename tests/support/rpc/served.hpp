@@ -1,13 +1,10 @@
-// served.hpp — callbacks the tests give an exercise, as data (tools/grader/README.md, "Who decides").
+// served.hpp — callbacks the tests give an exercise, and the rules they check (tools/grader/README.md, "Who decides").
 //
 // Chapter 03's closest_hit and chapter 08's traversal call back "does the ray hit object i inside this
-// range?". Under the grader the student's code runs in the runner and the tests in the judge. A test's
-// callback is a TABLE the judge makes for the one ray of the call: every hit that object i's own test
-// (the reference sphere, triangle, a test's "wall") gives along that ray, in increasing t. Asked about
-// object i in an open range, the table answers the first of object i's hits inside the range: exactly
-// what the object's test answers, because a shape test returns its smallest t inside the range, and the
-// table holds all of them (see table_for below). The table stays in the judge: the runner sends each
-// call's arguments and gets the answer back (served_wire.hpp says why).
+// range?". Under the grader the student's code runs in the runner and the tests in the judge. The judge
+// keeps the test's callback and answers each call the runner sends with the object's own test (the
+// test's "wall", the reference sphere or triangle), after checking the test's rules (served_wire.hpp
+// says why nothing is answered from data in the runner).
 //
 // How the code under test uses the callback is decided from the calls the judge itself answered and
 // from the exercise's answer, never from a log the runner keeps (the runner is the student's process).
@@ -99,25 +96,30 @@ std::string describe_fault(const fault_note<T>& note) {
     return call;
 }
 
-// What the judge sends with one call: object i's hits along ray r, and the test's rules.
+// The test's rules for one call of the exercise: the ray it was given, the objects that exist, how many
+// calls it may make and, when checked, which calls in which order.
 template <class T>
-struct hit_table {
+struct call_rules {
     ray<T> r{};
     int count = 0;                            // objects 0 .. count-1 exist
-    std::vector<int> owner;                   // owner[k]: whose hit records[k] is (increasing; then t increasing)
-    std::vector<hit_record<T>> records;       // as the object's own test returned them
     long budget = -1;                         // calls answered; -1: no limit
     bool check_calls = false;                 // when true, exactly the calls in `expected`, in order
     std::vector<expected_call<T>> expected;
 };
 
-// Answers calls from a table (in the judge, or in the test's own process), call after call.
+// The instructor's test of object i (a test's "wall", the reference sphere or triangle).
 template <class T>
-class table_server {
-public:
-    explicit table_server(hit_table<T> table) : table_(std::move(table)) {}
+using object_test = std::function<std::optional<hit_record<T>>(int i, const ray<T>& r, const interval<T>& range)>;
 
-    const ray<T>& for_ray() const { return table_.r; }
+// Answers one call of the exercise's callbacks after another (in the judge, or in the test's own
+// process): with the object's own test while the rules hold, with a fault record from the first call
+// that breaks one.
+template <class T>
+class object_server {
+public:
+    object_server(call_rules<T> rules, object_test<T> test) : rules_(std::move(rules)), test_(std::move(test)) {}
+
+    const ray<T>& for_ray() const { return rules_.r; }
 
     std::optional<hit_record<T>> answer(int i, const ray<T>& r, const interval<T>& range) {
         const int call = calls_++;
@@ -125,9 +127,7 @@ public:
             if (const auto broken = rule_broken(call, i, r, range)) fault_ = fault_note<T>{*broken, call, i, range};
         }
         if (fault_) return fault_answer(range);
-        for (std::size_t k = first_of(i); k < table_.owner.size() && table_.owner[k] == i; ++k)
-            if (range.contains(table_.records[k].t)) return table_.records[k];
-        return std::nullopt;
+        return test_(i, r, range);
     }
 
 private:
@@ -140,12 +140,12 @@ private:
     }
 
     std::optional<call_fault> rule_broken(int call, int i, const ray<T>& r, const interval<T>& range) const {
-        if (table_.budget >= 0 && call >= table_.budget) return call_fault::over_budget;
-        if (i < 0 || i >= table_.count) return call_fault::no_such_object;
-        if (!same_bits(r, table_.r)) return call_fault::other_ray;
-        if (table_.check_calls) {
-            if (std::size_t(call) >= table_.expected.size()) return call_fault::unexpected_call;
-            const expected_call<T>& e = table_.expected[std::size_t(call)];
+        if (rules_.budget >= 0 && call >= rules_.budget) return call_fault::over_budget;
+        if (i < 0 || i >= rules_.count) return call_fault::no_such_object;
+        if (!same_bits(r, rules_.r)) return call_fault::other_ray;
+        if (rules_.check_calls) {
+            if (std::size_t(call) >= rules_.expected.size()) return call_fault::unexpected_call;
+            const expected_call<T>& e = rules_.expected[std::size_t(call)];
             if (e.object != i || !same_bits(e.range, range)) return call_fault::unexpected_call;
         }
         return std::nullopt;
@@ -159,64 +159,36 @@ private:
         return fault_record(*fault_, t);
     }
 
-    std::size_t first_of(int i) const {
-        std::size_t lo = 0, hi = table_.owner.size();
-        while (lo < hi) {
-            const std::size_t mid = (lo + hi) / 2;
-            if (table_.owner[mid] < i) lo = mid + 1;
-            else hi = mid;
-        }
-        return lo;
-    }
-
-    hit_table<T> table_;
+    call_rules<T> rules_;
+    object_test<T> test_;
     int calls_ = 0;
     std::optional<fault_note<T>> fault_;
 };
 
 // The callable a test gives as its callback (chapter 03's object_intersector, chapter 08's
-// leaf_intersector): objects 0 .. count-1, each tested by `test` (instructor code: it runs in the judge,
-// or in the test's own process), with the test's rules. In the judge, its table_for() answers the runner;
-// in the test's own process (a student's build) it answers through the same table_server, one table per
-// ray, so the tests behave the same in both places.
+// leaf_intersector): objects 0 .. count-1, each tested by `test` (instructor code), with the test's
+// rules. Under the grader the judge keeps it and answers the runner's calls through an object_server
+// (served_wire.hpp); in the test's own process (a student's build) it answers through an object_server
+// too, a new one whenever the ray changes (a new call of the exercise), so the tests behave the same in
+// both places.
 template <class T>
 struct served_objects {
-    using object_test = std::function<std::optional<hit_record<T>>(int i, const ray<T>& r, const interval<T>& range)>;
-
     int count = 0;
-    object_test test;
+    object_test<T> test;
     long budget = -1;
     bool check_calls = false;
     std::vector<expected_call<T>> expected;
     std::optional<ray<T>> only_ray;  // when set, the one ray every call must ask about (else: the call's)
-    std::shared_ptr<std::optional<table_server<T>>> here = std::make_shared<std::optional<table_server<T>>>();
+    std::shared_ptr<std::optional<object_server<T>>> here = std::make_shared<std::optional<object_server<T>>>();
 
-    // Every hit of every object along r. A shape test returns the smallest t inside the open range it
-    // is given, so asking again above the last t found gives the next one; (-inf, inf) starts.
-    hit_table<T> table_for(const ray<T>& r) const {
-        hit_table<T> table;
-        table.r = r;
-        table.count = count;
-        table.budget = budget;
-        table.check_calls = check_calls;
-        table.expected = expected;
-        for (int i = 0; i < count; ++i) {
-            T above = -infinity<T>;
-            for (int k = 0; k < 4; ++k) {  // a shape of the course has at most 2 hits along a line
-                const auto hit = test(i, r, interval<T>{above, infinity<T>});
-                if (!hit || !(hit->t > above)) break;
-                table.owner.push_back(i);
-                table.records.push_back(*hit);
-                above = hit->t;
-            }
-        }
-        return table;
+    // The server of one call of the exercise, given ray r.
+    object_server<T> server_for(const ray<T>& r) const {
+        return object_server<T>(call_rules<T>{only_ray ? *only_ray : r, count, budget, check_calls, expected}, test);
     }
 
-    // In the test's own process: a new table whenever the ray changes (a new call of the exercise).
     std::optional<hit_record<T>> operator()(int i, const ray<T>& r, const interval<T>& range) const {
         const ray<T>& wanted = only_ray ? *only_ray : r;
-        if (!*here || std::memcmp(&(*here)->for_ray(), &wanted, sizeof wanted) != 0) here->emplace(table_for(wanted));
+        if (!*here || std::memcmp(&(*here)->for_ray(), &wanted, sizeof wanted) != 0) here->emplace(server_for(r));
         return (*here)->answer(i, r, range);
     }
 

@@ -1,9 +1,8 @@
 // served_wire.hpp — how the tests' callbacks travel (served.hpp says what they are).
 //
-// Chapter 03's intersector and chapter 08's leaf test: the judge answers every call. Its stub turns the
-// test's callback into the table of hits along the call's ray, kept in a table_server IN THE JUDGE with
-// the test's rules (budget, expected calls); the runner gets a function that sends each call's arguments
-// to the judge and returns the judge's answer. They are not answered from data in the runner: whatever
+// Chapter 03's intersector and chapter 08's leaf test: the judge answers every call. Its stub keeps the
+// test's callback IN THE JUDGE, in an object_server with the test's rules (budget, expected calls); the
+// runner gets a function that sends each call's arguments to the judge and returns the judge's answer. They are not answered from data in the runner: whatever
 // the runner holds, the student's code can read (the red team's closest_hit read a table of every
 // object's hits through std::function::target and scored 86/90 without a loop), and how the code uses
 // the callback (order, shrinking tmax, pruning) is only known to the judge if the judge sees the calls.
@@ -22,27 +21,22 @@
 
 namespace rt::rpc {
 
-// Judge side: the table a test's callback stands for, for this call's ray. A callback that is not a
-// served kind cannot be answered by the grader: a test error.
-template <class T, class Callback>
-test::hit_table<T> served_for(const Callback& f, const ray<T>& r) {
-    const auto* served = f.template target<test::served_objects<T>>();
-    if (served == nullptr)
-        throw std::logic_error("a test gave a callback that is not rt::test::served_objects "
-                               "(tests/support/rpc/served.hpp): the grader cannot answer it");
-    return served->table_for(served->only_ray ? *served->only_ray : r);
-}
-
-// Judge side: what an object callback argument becomes for one call. put() registers its server with
-// the call (judge.cpp keeps it until the call's answer) and sends only its number.
+// Judge side: what an object callback argument becomes for one call of the exercise, the server of the
+// test's callback for the call's ray. put() registers it with the call (judge.cpp keeps it until the
+// call's answer) and sends only its number. A callback that is not rt::test::served_objects cannot be
+// answered by the grader: a test error.
 template <class T>
 struct judge_callback {
-    std::shared_ptr<test::table_server<T>> server;
+    std::shared_ptr<test::object_server<T>> server;
 };
 
 template <class T, class Callback>
 judge_callback<T> judge_served(const Callback& f, const ray<T>& r) {
-    return {std::make_shared<test::table_server<T>>(served_for(f, r))};
+    const auto* served = f.template target<test::served_objects<T>>();
+    if (served == nullptr)
+        throw std::logic_error("a test gave a callback that is not rt::test::served_objects "
+                               "(tests/support/rpc/served.hpp): the grader cannot answer it");
+    return {std::make_shared<test::object_server<T>>(served->server_for(r))};
 }
 
 template <class T>

@@ -30,8 +30,8 @@ SUSPICIOUS = ["getenv", "environ", "RT_GRADER", "/proc", "fork", "vfork", "clone
               "__attribute__", "asm", "__asm", "__asm__", "#include \"/", "#include </", "solutions/", "hidden",
               "signal(", "setrlimit", "socket", "ptrace", "dlsym", "results.json", "incbin", "extern \"C\"",
               "doctest", "#pragma", "weak", "syscall", "keyctl", "add_key", "unshare", "memfd_create", "prctl",
-              # the test support's own types: a served callback's table read instead of called (served.hpp)
-              "rt::test", "served_table", "table_server", "hit_table", "occlusion_table", "target_type",
+              # the test support's own types: code that looks for a callback's data instead of calling it
+              "rt::test", "served_table", "object_server", "occlusion_server", "occlusion_table", "target_type",
               "reinterpret_cast"]
 _IDENTIFIER = re.compile(r"\w+")
 
