@@ -218,4 +218,53 @@ timing_summary time_batch(const family<Q>& fam, Batch batch, const timing_option
     return summarize(std::move(samples));
 }
 
+// Two batch loops timed in alternation on the same sample (a run of one,
+// then a run of the other, opt.runs times), for a ratio of their costs. A
+// shared machine slows down for stretches of a few milliseconds (another
+// process's burst, a virtual CPU waiting for its host): two loops timed one
+// after the other can land on either side of such a stretch, and their
+// ratio is then off by as much as the slowdown. Runs taken in alternation
+// see the same stretches, and the median of the per-pair ratios leaves out
+// a pair that straddles one.
+struct paired_timing {
+    timing_summary a, b;
+    double ratio = 0;  // median over pairs of b / a
+};
+
+template <class Q, class Batch>
+paired_timing time_pair(const family<Q>& fam, Batch batch_a, Batch batch_b, const timing_options& opt) {
+    paired_timing out;
+    std::size_t n = std::min(fam.queries.size(), opt.max_queries);
+    if (n == 0) return out;
+    std::vector<Q> sample;
+    sample.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) sample.push_back(fam.queries[i * fam.queries.size() / n]);
+    const Q* data = sample.data();
+    volatile double sink = batch_a(data, n) + batch_b(data, n);  // warm up
+    auto reps_for = [&](Batch batch) {
+        cpu_stopwatch once;
+        sink = sink + batch(data, n);
+        return std::max(1, static_cast<int>(opt.seconds_per_run / std::max(once.seconds(), 1e-7)));
+    };
+    const int reps_a = reps_for(batch_a), reps_b = reps_for(batch_b);
+    auto run = [&](Batch batch, int reps) {
+        cpu_stopwatch sw;
+        double acc = 0;
+        for (int k = 0; k < reps; ++k) acc += batch(data, n);
+        sink = sink + acc;
+        return sw.nanoseconds() / (double(reps) * double(n));
+    };
+    std::vector<double> as, bs, ratios;
+    for (int r = 0; r < opt.runs; ++r) {
+        as.push_back(run(batch_a, reps_a));
+        bs.push_back(run(batch_b, reps_b));
+        ratios.push_back(bs.back() / as.back());
+    }
+    (void)sink;
+    out.a = summarize(std::move(as));
+    out.b = summarize(std::move(bs));
+    out.ratio = summarize(std::move(ratios)).median;
+    return out;
+}
+
 }  // namespace rt::study

@@ -48,6 +48,13 @@ inline T two_sum_error(T a, T b, T s) {
     return (a - (s - bb)) + (b - bb);
 }
 
+// The error of s = fl(a - b): a - b = s + two_diff_error(a, b, s) exactly.
+template <class T>
+inline T two_diff_error(T a, T b, T s) {
+    T bb = s - a;
+    return (a - (s - bb)) - (b + bb);
+}
+
 // Only when |a| >= |b| (or a == 0): three operations instead of six.
 template <class T>
 inline double_word<T> fast_two_sum(T a, T b) {

@@ -445,8 +445,9 @@ inline double_word<double> cross_component(float o1, float o2, float c1, float c
 // from the floats (c_from_floats), unless only the sign of c matters
 // (out_of_range_sign: a c of that sign puts the root c/q outside the
 // range).
-inline double c_near_surface(const vec3<float>& o, const sphere<float>& s, const vec3<double>& f, double out_of_range_sign) {
+[[gnu::noinline]] inline double c_near_surface(const vec3<float>& o, const sphere<float>& s, double out_of_range_sign) {
     const vec3<float>& C = s.center;
+    const vec3<double> f = convert<double>(o) - convert<double>(C);
     const double r = s.radius;
     const double lx = two_sum_error(double(o.x), -double(C.x), f.x), ly = two_sum_error(double(o.y), -double(C.y), f.y),
                  lz = two_sum_error(double(o.z), -double(C.z), f.z);
@@ -474,6 +475,41 @@ inline double c_near_surface(const vec3<float>& o, const sphere<float>& s, const
     return c_from_floats(o, s);
 }
 
+// Two doubles in one SSE2 register (every x86-64 has SSE2): the x and y
+// lanes of one step, computed by one instruction.
+typedef double double2 __attribute__((vector_size(16)));
+
+// c_near_surface's usual case, inline in sphere_in_double: f = o - C exact
+// in double (a difference of two floats always is, unless their exponents
+// are more than about 29 apart). Shadow and reflection rays leaving a sphere
+// all come here, so it is written for speed:
+//   * f's exactness is checked with two_diff_error, two components at a
+//     time, and the squares of the errors added (the error of a difference
+//     of floats is a multiple of 2^-149, so its square is never 0);
+//   * the barrier makes the compiler load o and C again rather than keep
+//     them in registers all the way from the top of sphere_in_double, which
+//     would cost every other ray a few spills.
+// An f that is not exact goes to c_near_surface, and so does a c whose
+// digits rest + pair cannot vouch for (c_from_floats).
+[[gnu::always_inline]] inline double c_near_surface_usual(const vec3<float>& o, const sphere<float>& s,
+                                                         const vec3<double>& f, double out_of_range_sign) {
+    asm volatile("" ::: "memory");
+    const vec3<float>& C = s.center;
+    const double2 o_xy = {double(o.x), double(o.y)}, C_xy = {double(C.x), double(C.y)}, f_xy = {f.x, f.y};
+    const double2 l_xy = two_diff_error(o_xy, C_xy, f_xy);
+    const double lz = two_diff_error(double(o.z), double(C.z), f.z);
+    const double2 l_xy2 = l_xy * l_xy;
+    if (l_xy2[0] + l_xy2[1] + lz * lz != 0) return c_near_surface(o, s, out_of_range_sign);
+    const double r = s.radius;
+    const double x2 = f.x * f.x, y2 = f.y * f.y, z2 = f.z * f.z;
+    const double rest = std::min(std::min(y2 + z2, x2 + z2), x2 + y2);
+    const double big = std::max(std::max(std::fabs(f.x), std::fabs(f.y)), std::fabs(f.z));
+    const double pair = (big - r) * (big + r);
+    const double size = rest + std::fabs(pair), c = rest + pair;
+    if (0x1p-27 * size <= std::fabs(c) || out_of_range_sign * c > 0x1p-49 * size) return c;
+    return c_from_floats(o, s);
+}
+
 // A grazing ray: the discriminant cancelled more than 26 of double's 53
 // bits, too few left for float's 24. It is computed again in double-double
 // from exact pieces (a r^2 - |f x d|^2, every square error-free), which
@@ -482,9 +518,10 @@ inline double c_near_surface(const vec3<float>& o, const sphere<float>& s, const
 // that the common path stays small.
 [[gnu::noinline, gnu::cold]] inline std::optional<float> sphere_grazing(const ray<float>& ray_, const sphere<float>& s,
                                                                        const interval<float>& range,
-                                                                       const vec3<double>& f, double h) {
+                                                                       double h) {
     const vec3<float>& o = ray_.origin;
     const vec3<float>& C = s.center;
+    const vec3<double> f = convert<double>(o) - convert<double>(C);
     const vec3<float>& d = ray_.direction;
     const double_word<double> g[3] = {cross_component(o.y, o.z, C.y, C.z, d.y, d.z),
                                       cross_component(o.z, o.x, C.z, C.x, d.z, d.x),
@@ -505,7 +542,7 @@ inline double c_near_surface(const vec3<float>& o, const sphere<float>& s, const
     const double ff = dot(f, f);
     double c = ff - r2;
     if (!(std::fabs(c) >= 0x1p-27 * ff))
-        c = c_near_surface(o, s, f, range.min >= 0 ? (h >= 0 ? 1.0 : -1.0) : 0.0);
+        c = c_near_surface(o, s, range.min >= 0 ? (h >= 0 ? 1.0 : -1.0) : 0.0);
     const double q = -(h + std::copysign(std::sqrt(disc), h));
     if (q == 0) return nearest_in_range(0.0f, 0.0f, range);  // tangent at the origin: t = 0 twice
     return nearest_in_range(to_float(c / q), to_float(q / av), range);
@@ -593,7 +630,7 @@ inline double disc_by_cross(const vec3<double>& f, const vec3<double>& d, double
         // sign puts the root c/q behind the range (q has the sign of -h), a
         // c of certain sign.
         if (!(std::fabs(c) >= 0x1p-27 * ff))
-            c = c_near_surface(ray_.origin, s, f, ahead_only ? (h >= 0 ? 1.0 : -1.0) : 0.0);
+            c = c_near_surface_usual(ray_.origin, s, f, ahead_only ? (h >= 0 ? 1.0 : -1.0) : 0.0);
         // Inside, clearly (h^2 - a c is a sum of two positive terms), or not
         // near tangency: a |c| <= 2^-22 a f.f <= h^2 / 4, so h^2 - a c does
         // not cancel, and h is within 2^-40 of itself.
@@ -604,7 +641,7 @@ inline double disc_by_cross(const vec3<double>& f, const vec3<double>& d, double
             disc = disc_by_cross(f, d, a, r2, &grazing);
         }
     }
-    if (grazing) return sphere_grazing(ray_, s, range, f, h);
+    if (grazing) return sphere_grazing(ray_, s, range, h);
     if (!(disc >= 0)) return std::nullopt;  // a miss, or NaN
     if (ahead_only) return root_ahead(a, h, c, disc, range);
     return near_root_first(a, h, c, disc, range);
