@@ -430,7 +430,11 @@ inline T sphere_discriminant(T fx, T fy, T fz, T c, T rr, T dx, T dy, T dz, T a,
 }
 
 // One sphere against one ray, with f = origin - centre, c = |f|^2 - r^2,
-// a = |d|^2. Returns the nearest t > tmin, or infinity.
+// a = |d|^2. Returns the nearest t > tmin, or infinity. The radius is > 0
+// and at most 1e15 (the scene reader refuses anything else, and one that
+// rounds to 0 in float); r only enters squared, so this test itself would
+// answer a negative radius as if it were positive and a zero radius as a
+// point.
 template <class T, sphere_mode SM>
 inline T sphere_t(T fx, T fy, T fz, T c, T rr, T dx, T dy, T dz, T a, T inv_a, T tmin) {
     const T half_b = fx * dx + fy * dy + fz * dz;

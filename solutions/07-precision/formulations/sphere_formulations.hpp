@@ -444,7 +444,9 @@ inline double_word<double> cross_component(float o1, float o2, float c1, float c
 // of the surface in units of the farthest coordinate) is computed again
 // from the floats (c_from_floats), unless only the sign of c matters
 // (out_of_range_sign: a c of that sign puts the root c/q outside the
-// range).
+// range). Its usual case, f exact, is c_near_surface_usual (below), inline
+// in sphere_in_double; this whole version runs for an inexact f and for
+// sphere_grazing.
 [[gnu::noinline]] inline double c_near_surface(const vec3<float>& o, const sphere<float>& s, double out_of_range_sign) {
     const vec3<float>& C = s.center;
     const vec3<double> f = convert<double>(o) - convert<double>(C);
@@ -489,8 +491,8 @@ typedef double double2 __attribute__((vector_size(16)));
 //   * the barrier makes the compiler load o and C again rather than keep
 //     them in registers all the way from the top of sphere_in_double, which
 //     would cost every other ray a few spills.
-// An f that is not exact goes to c_near_surface, and so does a c whose
-// digits rest + pair cannot vouch for (c_from_floats).
+// An f that is not exact goes to c_near_surface; a c whose digits
+// rest + pair cannot vouch for is computed again by c_from_floats.
 [[gnu::always_inline]] inline double c_near_surface_usual(const vec3<float>& o, const sphere<float>& s,
                                                          const vec3<double>& f, double out_of_range_sign) {
     asm volatile("" ::: "memory");
@@ -571,7 +573,8 @@ inline double disc_by_cross(const vec3<double>& f, const vec3<double>& d, double
 // Two quantities can cancel beyond double's reserve, and each has its own
 // remedy:
 //   * c, for an origin on or near the surface (a secondary ray, or 1e-3
-//     above a sphere of radius 1e7): c_near_surface;
+//     above a sphere of radius 1e7): c_near_surface_usual, and
+//     c_near_surface or c_from_floats for the rare origins it cannot settle;
 //   * the discriminant h^2 - a c, when a c is close to h^2 (a far sphere, a
 //     ray near tangency): a r^2 - |f x d|^2 instead (disc_by_cross), and
 //     double-double for a ray within a hair of tangency (sphere_grazing).
@@ -626,9 +629,9 @@ inline double disc_by_cross(const vec3<double>& f, const vec3<double>& d, double
         // Within about 2^-22 |f| of the surface, or inside. c is off by at
         // most 6 * 2^-53 f.f, below 2^-25 of c (at most 1 ULP of the float
         // t) when |c| >= 2^-27 f.f; only origins nearer the surface need
-        // c_near_surface. It returns c within 2^-26 of itself or, when its
-        // sign puts the root c/q behind the range (q has the sign of -h), a
-        // c of certain sign.
+        // c_near_surface_usual. It returns c within 2^-26 of itself or, when
+        // its sign puts the root c/q behind the range (q has the sign of -h),
+        // a c of certain sign.
         if (!(std::fabs(c) >= 0x1p-27 * ff))
             c = c_near_surface_usual(ray_.origin, s, f, ahead_only ? (h >= 0 ? 1.0 : -1.0) : 0.0);
         // Inside, clearly (h^2 - a c is a sum of two positive terms), or not
