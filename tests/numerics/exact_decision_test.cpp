@@ -377,6 +377,25 @@ TEST_CASE_TEMPLATE("render triangle kernel: a non-zero subnormal direction is a 
         CHECK(render_kernels::plane_lane(a, vec3<T>(0, 0, 1), ray<T>{vec3<T>(0, 0, 0), d}, T(0)) == want);
     }
 }
+TEST_CASE_TEMPLATE("render plane kernel: a subnormal direction whose d.n loses digits still gives the exact t", T,
+                   RT_SCALARS) {
+    // The plane x = p (p = 2^(emin + 20)) with normal (1 + 2^-10, 0, 0), seen from the origin along
+    // (2^(denorm + 4), 0, 0), denorm the exponent of the smallest subnormal: the product n.d
+    // = 2^(denorm + 4) + 2^(denorm - 6) is below the subnormal grid and rounds to 2^(denorm + 4), so
+    // num / d.n would be 2^-10 too large (thousands of ULPs). The exact t is p / d_x, a power of two.
+    const int emin = std::numeric_limits<T>::min_exponent, denorm = emin - std::numeric_limits<T>::digits;
+    const T p = std::ldexp(T(1), emin + 20), dx = std::ldexp(T(1), denorm + 4);
+    const vec3<T> n(1 + std::ldexp(T(1), -10), 0, 0), point(p, 0, 0), d(dx, 0, 0);
+    const T want = std::ldexp(T(1), emin + 20 - (denorm + 4));
+    REQUIRE(std::isfinite(want));
+    REQUIRE_MESSAGE(n.x * dx == dx, "stiff: the rounded d.n has lost the 2^-10");
+    REQUIRE(render_kernels::plane_plain(point, n, ray<T>{vec3<T>(0, 0, 0), d}) != want);
+    CHECK(render_kernels::plane_lane(point, n, ray<T>{vec3<T>(0, 0, 0), d}, T(0)) == want);
+    CHECK(plane_lane_scene(point, n, ray<T>{vec3<T>(0, 0, 0), d}, T(0)) == want);
+    // Pointing away: a miss.
+    CHECK(render_kernels::plane_lane(point, n, ray<T>{vec3<T>(0, 0, 0), -d}, T(0)) == infinity<T>);
+}
+
 TEST_CASE_TEMPLATE("render triangle kernel: rays exactly in a triangle's plane miss even where its edges round", T,
                    RT_SCALARS) {
     // Corner a = K u is coarse (K = 2^(digits + 3)), b = v and c = v + m are small integers: the edges

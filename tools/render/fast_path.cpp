@@ -158,7 +158,11 @@ struct soa_scene {
             radius.push_back(T(x.radius)), radius2.push_back(T(x.radius) * T(x.radius));
         }
         for (const auto& x : s.planes) {
-            vec3d n = normalize(x.normal);
+            // Scaled by a power of two first (exact), so that normalize's
+            // squares neither underflow nor overflow: a normal of any finite
+            // non-zero length gives the unit normal to within rounding.
+            const int k = formulations::direction_scale(x.normal);
+            const vec3d n = normalize(vec3d(std::ldexp(x.normal.x, k), std::ldexp(x.normal.y, k), std::ldexp(x.normal.z, k)));
             px.push_back(T(x.point.x)), py.push_back(T(x.point.y)), pz.push_back(T(x.point.z));
             nx.push_back(T(n.x)), ny.push_back(T(n.y)), nz.push_back(T(n.z));
         }

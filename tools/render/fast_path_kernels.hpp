@@ -39,13 +39,23 @@ namespace rt::render_tool {
 template <class T>
 inline constexpr T half_ulp = std::numeric_limits<T>::epsilon() / 2;
 
+// Below this, d.n may have lost digits to underflow (a product of a
+// subnormal direction component with the normal): 2^p times the smallest
+// normal number, so that what the subnormal products lost is below 2^-2p of
+// d.n.
+template <class T>
+inline const T underflow_den = std::ldexp(std::numeric_limits<T>::min(), std::numeric_limits<T>::digits);
+
 // One plane against one ray; num = n . (point - origin). The bound is
-// parallel_exactly's filter: each product and sum rounds relative to itself.
+// parallel_exactly's filter (each product and sum rounds relative to
+// itself), and a d.n small enough to have lost digits to underflow is left
+// to plane_t_exact too, which scales the direction: t keeps its digits for
+// a subnormal direction as well.
 template <class T>
 [[gnu::always_inline]] inline T plane_t(T num, T nx, T ny, T nz, T dx, T dy, T dz, T tmin, int& unsure) {
     const T den = nx * dx + ny * dy + nz * dz;
     const T bound = T(8) * half_ulp<T> * (std::fabs(nx * dx) + std::fabs(ny * dy) + std::fabs(nz * dz)) +
-                    T(8) * std::numeric_limits<T>::denorm_min();
+                    underflow_den<T>;
     const bool small = std::fabs(den) <= bound;  // false for NaN (padding): rejected below anyway
     unsure |= int(small);
     const T t = num / den;  // exactly 0: +-inf or NaN, both rejected
