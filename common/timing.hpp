@@ -6,9 +6,19 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <vector>
 
 namespace rt {
+
+// The CPU time this process has used, all its threads together. Other jobs
+// on a shared machine do not advance it, so work timed with it reads the
+// same at any load (divide by the threads that did the work).
+inline double process_cpu_seconds() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + double(t.tv_nsec) * 1e-9;
+}
 
 class stopwatch {
 public:

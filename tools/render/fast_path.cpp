@@ -851,8 +851,10 @@ struct context {
 template <class T, sphere_mode SM, bool Planes, bool Tris, bool Lights>
 image render_with(const scene_description& d, int width, int height, bool tree, render_stats& stats) {
     const stopwatch setup;
+    const double setup_cpu = process_cpu_seconds();
     const context<T> ctx(d, width, height, tree);
     stats.setup_seconds = setup.seconds();
+    stats.setup_cpu_seconds = process_cpu_seconds() - setup_cpu;
     if (tree) std::fprintf(stderr, "%s\n", ctx.describe_trees().c_str());  // stderr: outside rt-bench's tables
     image img(width, height);
     std::atomic<long> shadow_rays{0};

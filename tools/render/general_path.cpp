@@ -22,6 +22,7 @@ namespace {
 template <class T>
 image render_typed(const scene_description& d, bool use_tree, int width, int height, render_stats& stats) {
     const stopwatch setup;
+    const double setup_cpu = process_cpu_seconds();
     const scene<T> world = convert_scene<T>(d.world);
     const scene_camera<T> camera(d.camera, width, height);
 
@@ -33,6 +34,7 @@ image render_typed(const scene_description& d, bool use_tree, int width, int hei
     const ch08::scene_tree<T> tree = use_tree ? ch08::build_scene_tree(world) : ch08::scene_tree<T>{};
     const ch08::leaf_intersector<T> leaf = ch08::leaf_test(tree, dispatch);
     stats.setup_seconds = setup.seconds();
+    stats.setup_cpu_seconds = process_cpu_seconds() - setup_cpu;
     auto closest = [&](const ray<T>& r, const interval<T>& range) {
         return use_tree ? ch08::scene_closest_hit(tree, leaf, dispatch, r, range)
                         : ch03::closest_hit(world.object_count(), intersect, r, range);

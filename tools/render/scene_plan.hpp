@@ -62,7 +62,8 @@ struct scene_plan {
 // the first ray, so that rays per second can leave the setup out.
 struct render_stats {
     long rays = 0;
-    double setup_seconds = 0;
+    double setup_seconds = 0;      // wall clock: arrays and trees, before the first ray
+    double setup_cpu_seconds = 0;  // the same as CPU time of the whole process (process_cpu_seconds)
 };
 
 // Estimated hit-point error, in object sizes, of a formulation in a precision
