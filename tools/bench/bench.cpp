@@ -114,6 +114,17 @@ double best_seconds(const std::function<void()>& f, int repeat) {
     return summarize(samples).min;
 }
 
+// The time of f() after its own setup (arrays and trees, which f reports in
+// `stats`): the tracing alone, from one run. A build timed in another run
+// of the sphereflake differs by up to two seconds, more than its tracing.
+double seconds_after_setup(const std::function<void()>& f, const render_stats& stats) {
+    const stopwatch sw;
+    const double cpu0 = process_cpu_seconds();
+    f();
+    return wall_clock ? sw.seconds() - stats.setup_seconds
+                      : (process_cpu_seconds() - cpu0 - stats.setup_cpu_seconds) / double(render_threads());
+}
+
 struct render_figures {
     double seconds = 0;
     long rays = 0;
@@ -387,10 +398,11 @@ pinhole_camera<float> float_camera(const scene_description& d, int size) {
 }
 
 // Our tree against Embree's on one scene: build, then primary hits only.
-// Our traced time is a run with the tree (one build + trace_repeats traces)
-// minus a build on its own, divided by trace_repeats; all CPU time per
-// thread, best of `runs`. The repeats make the trace outweigh the build, so
-// the build's own spread (a tenth of it under load) stays small beside it.
+// Our traced time is trace_repeats traces after one build, without that
+// build (seconds_after_setup), divided by trace_repeats; all CPU time per
+// thread, best of `runs`. (It used to be a whole run minus a build timed
+// in another run: on the sphereflake that difference was mostly the two
+// builds' spread.)
 constexpr int trace_repeats = 16;
 void tree_row(const char* name, const scene_description& d, int size) {
     scene_plan plan = make_plan(d, 1e-3, std::nullopt);
@@ -400,9 +412,14 @@ void tree_row(const char* name, const scene_description& d, int size) {
     tree_figures tf;
     const double build = best_seconds([&] { tf = build_trees_only(d); }, runs);
     long ours_hits = 0;
-    const double total =
-        best_seconds([&] { ours_hits = count_primary_hits(d, plan, size, size, trace_repeats); }, runs);
-    const double trace = std::max(total - build, 1e-9) / trace_repeats;
+    double trace = infinity<double>;
+    for (int r = 0; r < runs; ++r) {
+        render_stats count_stats;
+        trace = std::min(trace, seconds_after_setup([&] { ours_hits = count_primary_hits(d, plan, size, size, trace_repeats,
+                                                                                           &count_stats); },
+                                                    count_stats) /
+                                    trace_repeats);
+    }
     std::printf("   %-22s | %10.0f | %9.1f | %8.1f | %9.1f | %7.0f", name, objects, build * 1e3,
                 build * 1e3 / (objects / 1e6), rays / trace / 1e6, trace / rays * 1e9 * render_threads());
 #ifdef RT_HAVE_EMBREE
@@ -466,7 +483,7 @@ void big_scenes(int size, bool flake) {
     }
     if (!flake) return;
     const int fsize = 1024;
-    constexpr int flake_trace_repeats = 8;
+    constexpr int flake_trace_repeats = 4;
     const scene_description d = generated_scene(spd_database::balls, 8, {2.1, 1.3, 1.7}, {0, 0, 0}, fsize, generation);
     std::printf("\n6. the sphereflake, SPD balls size 8: %zu spheres and a ground plane, %dx%d, one light with shadows\n",
                 d.world.spheres.size(), fsize, fsize);
@@ -479,12 +496,7 @@ void big_scenes(int size, bool flake) {
     // trees), both from the same run: a build timed in another run differs
     // by up to half a second, as much as the tracing itself.
     render_stats stats;
-    const stopwatch render_wall;
-    const double render_cpu = process_cpu_seconds();
-    render_fast(d, plan, fsize, fsize, stats);
-    const double render_trace = wall_clock ? render_wall.seconds() - stats.setup_seconds
-                                           : (process_cpu_seconds() - render_cpu - stats.setup_cpu_seconds) /
-                                                 double(render_threads());
+    const double render_trace = seconds_after_setup([&] { render_fast(d, plan, fsize, fsize, stats); }, stats);
     const long rays = stats.rays;
     std::printf("   ours: tree build %.2f s (CPU per thread; %.1f MB, depth %zu), render with shading and shadows %.2f s "
                 "after its own setup, %ld rays, %.2f Mrays/s; peak memory so far %.2f GB\n",
@@ -497,14 +509,18 @@ void big_scenes(int size, bool flake) {
         const double ebuild = best_seconds([&] { e = std::make_unique<embree_scene>(d); }, 1);
         const pinhole_camera<float> cam = float_camera(d, fsize);
         long hits1 = 0, hits16 = 0, ours_hits = 0;
-        const double single = best_seconds([&] { hits1 = e->single(cam); }, 1);
-        const double packets = best_seconds([&] { hits16 = e->packets16(cam); }, 1);
-        // As in tree_row: one build and flake_trace_repeats traces, minus a
-        // build on its own, so that the build's spread is shared out.
-        const double ours_total =
-            best_seconds([&] { ours_hits = count_primary_hits(d, plan, fsize, fsize, flake_trace_repeats); }, 1);
-        const double px = double(fsize) * fsize,
-                     ours_trace = std::max(ours_total - build, 1e-9) / flake_trace_repeats;
+        // Best of `runs`: a trace of these rays takes a tenth of a second, and
+        // one run of it read anywhere from 5.7 to 9.7 Mrays/s.
+        const double single = best_seconds([&] { hits1 = e->single(cam); }, runs);
+        const double packets = best_seconds([&] { hits16 = e->packets16(cam); }, runs);
+        // The traces alone, without the build that precedes them in the same run.
+        render_stats count_stats;
+        const double ours_trace =
+            seconds_after_setup([&] { ours_hits = count_primary_hits(d, plan, fsize, fsize, flake_trace_repeats,
+                                                                     &count_stats); },
+                                count_stats) /
+            flake_trace_repeats;
+        const double px = double(fsize) * fsize;
         std::printf("   Embree (spheres only: no infinite plane in Embree): build %.2f s, primary rays %.2f Mrays/s "
                     "(rtcIntersect1), %.2f Mrays/s (rtcIntersect16); ours on the same primary rays %.2f Mrays/s "
                     "(%s); hits ours/E1/E16 %ld/%ld/%ld; peak memory %.2f GB\n",

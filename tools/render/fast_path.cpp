@@ -924,8 +924,11 @@ primary_hits trace_with(const scene_description& d, int width, int height, bool 
 }
 
 template <class T, sphere_mode SM, bool Planes, bool Tris>
-long count_with(const scene_description& d, int width, int height, bool tree, int repeat) {
+long count_with(const scene_description& d, int width, int height, bool tree, int repeat, render_stats* stats) {
+    const stopwatch setup;
+    const double setup_cpu = process_cpu_seconds();
     const context<T> ctx(d, width, height, tree);
+    if (stats) stats->setup_seconds = setup.seconds(), stats->setup_cpu_seconds = process_cpu_seconds() - setup_cpu;
     std::atomic<long> hits{0};
     for (int r = 0; r < repeat; ++r) {
     hits = 0;
@@ -993,12 +996,13 @@ primary_hits trace_primary(const scene_description& d, const scene_plan& plan, i
     return plan.prec == precision::single ? run(float{}) : run(double{});
 }
 
-long count_primary_hits(const scene_description& d, const scene_plan& plan, int width, int height, int repeat) {
+long count_primary_hits(const scene_description& d, const scene_plan& plan, int width, int height, int repeat,
+                        render_stats* stats) {
     auto run = [&](auto type) {
         using T = decltype(type);
         return dispatch(mode_of(plan), plan.planes > 0, plan.triangles > 0, false, [&](auto SM, auto P, auto Tr, auto) {
             return count_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value>(d, width, height, plan.tree,
-                                                                                                repeat);
+                                                                                                repeat, stats);
         });
     };
     return plan.prec == precision::single ? run(float{}) : run(double{});

@@ -42,8 +42,10 @@ primary_hits trace_primary_reference(const scene_description& scene, int width, 
 // something. The benchmark's measure of raw intersection throughput (the
 // same work Embree's rtcIntersect does). The scene's arrays and trees are
 // built once and the image traced `repeat` times, so that a benchmark can
-// time many traces against one build.
-long count_primary_hits(const scene_description& scene, const scene_plan& plan, int width, int height, int repeat = 1);
+// time many traces against one build; `stats`, when given, gets the build's
+// own times (setup_seconds, setup_cpu_seconds), to take out of the run's.
+long count_primary_hits(const scene_description& scene, const scene_plan& plan, int width, int height, int repeat = 1,
+                        render_stats* stats = nullptr);
 
 // What building the scene's trees costs, apart from tracing: the boxes,
 // the trees and the objects' float arrays in leaf order, as the specialised

@@ -20,7 +20,7 @@ namespace rt::render_tool {
     image render_fast(const scene_description&, const scene_plan&, int, int, render_stats&);                           \
     primary_hits trace_primary(const scene_description&, const scene_plan&, int, int);                        \
     primary_hits trace_primary_reference(const scene_description&, int, int);                                 \
-    long count_primary_hits(const scene_description&, const scene_plan&, int, int, int);                      \
+    long count_primary_hits(const scene_description&, const scene_plan&, int, int, int, render_stats*);       \
     tree_figures build_trees_only(const scene_description&);                                                  \
     }
 
@@ -111,8 +111,9 @@ primary_hits trace_primary(const scene_description& d, const scene_plan& plan, i
 primary_hits trace_primary_reference(const scene_description& d, int width, int height) {
     return chosen().trace_primary_reference(d, width, height);
 }
-long count_primary_hits(const scene_description& d, const scene_plan& plan, int width, int height, int repeat) {
-    return chosen().count_primary_hits(d, plan, width, height, repeat);
+long count_primary_hits(const scene_description& d, const scene_plan& plan, int width, int height, int repeat,
+                        render_stats* stats) {
+    return chosen().count_primary_hits(d, plan, width, height, repeat, stats);
 }
 tree_figures build_trees_only(const scene_description& d) { return chosen().build_trees_only(d); }
 
