@@ -102,7 +102,6 @@ scene_description mixed_scene(int spheres, bool plane, int triangles, bool light
 // an otherwise idle machine).
 bool wall_clock = false;
 
-
 double best_seconds(const std::function<void()>& f, int repeat) {
     std::vector<double> samples;
     for (int r = 0; r < repeat; ++r) {
@@ -114,15 +113,22 @@ double best_seconds(const std::function<void()>& f, int repeat) {
     return summarize(samples).min;
 }
 
-// The time of f() after its own setup (arrays and trees, which f reports in
-// `stats`): the tracing alone, from one run. A build timed in another run
-// of the sphereflake differs by up to two seconds, more than its tracing.
-double seconds_after_setup(const std::function<void()>& f, const render_stats& stats) {
-    const stopwatch sw;
-    const double cpu0 = process_cpu_seconds();
-    f();
-    return wall_clock ? sw.seconds() - stats.setup_seconds
-                      : (process_cpu_seconds() - cpu0 - stats.setup_cpu_seconds) / double(render_threads());
+// The same for a render or trace that builds its own arrays and trees
+// first and reports that setup in the render_stats it is given: each run is
+// timed without its setup, so the figure is the tracing alone. (A build
+// timed in another run of the sphereflake differs by up to two seconds,
+// more than its tracing.)
+double best_seconds_after_setup(const std::function<void(render_stats&)>& f, int repeat) {
+    std::vector<double> samples;
+    for (int r = 0; r < repeat; ++r) {
+        render_stats stats;
+        const stopwatch sw;
+        const double cpu0 = process_cpu_seconds();
+        f(stats);
+        samples.push_back(wall_clock ? sw.seconds() - stats.setup_seconds
+                                     : (process_cpu_seconds() - cpu0 - stats.setup_cpu_seconds) / double(render_threads()));
+    }
+    return summarize(samples).min;
 }
 
 struct render_figures {
@@ -399,7 +405,7 @@ pinhole_camera<float> float_camera(const scene_description& d, int size) {
 
 // Our tree against Embree's on one scene: build, then primary hits only.
 // Our traced time is trace_repeats traces after one build, without that
-// build (seconds_after_setup), divided by trace_repeats; all CPU time per
+// build (best_seconds_after_setup), divided by trace_repeats; all CPU time per
 // thread, best of `runs`. (It used to be a whole run minus a build timed
 // in another run: on the sphereflake that difference was mostly the two
 // builds' spread.)
@@ -412,14 +418,10 @@ void tree_row(const char* name, const scene_description& d, int size) {
     tree_figures tf;
     const double build = best_seconds([&] { tf = build_trees_only(d); }, runs);
     long ours_hits = 0;
-    double trace = infinity<double>;
-    for (int r = 0; r < runs; ++r) {
-        render_stats count_stats;
-        trace = std::min(trace, seconds_after_setup([&] { ours_hits = count_primary_hits(d, plan, size, size, trace_repeats,
-                                                                                           &count_stats); },
-                                                    count_stats) /
-                                    trace_repeats);
-    }
+    const double trace =
+        best_seconds_after_setup(
+            [&](render_stats& st) { ours_hits = count_primary_hits(d, plan, size, size, trace_repeats, &st); }, runs) /
+        trace_repeats;
     std::printf("   %-22s | %10.0f | %9.1f | %8.1f | %9.1f | %7.0f", name, objects, build * 1e3,
                 build * 1e3 / (objects / 1e6), rays / trace / 1e6, trace / rays * 1e9 * render_threads());
 #ifdef RT_HAVE_EMBREE
@@ -492,12 +494,13 @@ void big_scenes(int size, bool flake) {
     std::printf("   %s\n", plan.describe().c_str());
     tree_figures tf;
     const double build = best_seconds([&] { tf = build_trees_only(d); }, 1);
-    // The render's tracing is its whole time minus its own setup (arrays and
-    // trees), both from the same run: a build timed in another run differs
-    // by up to half a second, as much as the tracing itself.
-    render_stats stats;
-    const double render_trace = seconds_after_setup([&] { render_fast(d, plan, fsize, fsize, stats); }, stats);
-    const long rays = stats.rays;
+    long rays = 0;
+    const double render_trace = best_seconds_after_setup(
+        [&](render_stats& st) {
+            render_fast(d, plan, fsize, fsize, st);
+            rays = st.rays;
+        },
+        1);
     std::printf("   ours: tree build %.2f s (CPU per thread; %.1f MB, depth %zu), render with shading and shadows %.2f s "
                 "after its own setup, %ld rays, %.2f Mrays/s; peak memory so far %.2f GB\n",
                 build, double(tf.bytes) / 1e6, tf.depth, render_trace, rays, double(rays) / render_trace / 1e6,
@@ -513,12 +516,10 @@ void big_scenes(int size, bool flake) {
         // one run of it read anywhere from 5.7 to 9.7 Mrays/s.
         const double single = best_seconds([&] { hits1 = e->single(cam); }, runs);
         const double packets = best_seconds([&] { hits16 = e->packets16(cam); }, runs);
-        // The traces alone, without the build that precedes them in the same run.
-        render_stats count_stats;
         const double ours_trace =
-            seconds_after_setup([&] { ours_hits = count_primary_hits(d, plan, fsize, fsize, flake_trace_repeats,
-                                                                     &count_stats); },
-                                count_stats) /
+            best_seconds_after_setup(
+                [&](render_stats& st) { ours_hits = count_primary_hits(d, plan, fsize, fsize, flake_trace_repeats, &st); },
+                1) /
             flake_trace_repeats;
         const double px = double(fsize) * fsize;
         std::printf("   Embree (spheres only: no infinite plane in Embree): build %.2f s, primary rays %.2f Mrays/s "

@@ -928,7 +928,10 @@ long count_with(const scene_description& d, int width, int height, bool tree, in
     const stopwatch setup;
     const double setup_cpu = process_cpu_seconds();
     const context<T> ctx(d, width, height, tree);
-    if (stats) stats->setup_seconds = setup.seconds(), stats->setup_cpu_seconds = process_cpu_seconds() - setup_cpu;
+    if (stats) {
+        stats->setup_seconds = setup.seconds();
+        stats->setup_cpu_seconds = process_cpu_seconds() - setup_cpu;
+    }
     std::atomic<long> hits{0};
     for (int r = 0; r < repeat; ++r) {
     hits = 0;

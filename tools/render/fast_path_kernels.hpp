@@ -41,10 +41,10 @@ inline constexpr T half_ulp = std::numeric_limits<T>::epsilon() / 2;
 
 // Below this, d.n may have lost digits to underflow (a product of a
 // subnormal direction component with the normal): 2^p times the smallest
-// normal number, so that what the subnormal products lost is below 2^-2p of
-// d.n.
+// normal number (2 min / epsilon, epsilon being 2^(1-p)), so that what the
+// subnormal products lost is below 2^-2p of d.n.
 template <class T>
-inline const T underflow_den = std::ldexp(std::numeric_limits<T>::min(), std::numeric_limits<T>::digits);
+inline constexpr T underflow_den = T(2) * std::numeric_limits<T>::min() / std::numeric_limits<T>::epsilon();
 
 // One plane against one ray; num = n . (point - origin). The bound is
 // parallel_exactly's filter (each product and sum rounds relative to

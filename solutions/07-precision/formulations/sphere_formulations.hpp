@@ -427,15 +427,27 @@ inline double_word<double> cross_component(float o1, float o2, float c1, float c
     return c_from_exact_pieces(o, s);
 }
 
+// The two parts of c = f.f - r^2 split at the axis k where |f| is largest:
+// rest, the sum of the other two squares (the smallest of the three sums
+// of two squares: no branch picks k), and pair = (|f_k| - r)(|f_k| + r).
+struct largest_axis_parts {
+    double rest, pair;
+};
+[[gnu::always_inline]] inline largest_axis_parts split_at_largest_axis(const vec3<double>& f, double r) {
+    const double x2 = f.x * f.x, y2 = f.y * f.y, z2 = f.z * f.z;
+    const double rest = std::min(std::min(y2 + z2, x2 + z2), x2 + y2);
+    const double big = std::max(std::max(std::fabs(f.x), std::fabs(f.y)), std::fabs(f.z));
+    return {rest, (big - r) * (big + r)};
+}
+
 // c = f.f - r^2 for an origin near the surface, where the plain sum of
 // squares has cancelled (second stage). With k the axis where |f| is
 // largest,
 //     c = (sum of the other two squares) + (|f_k| - r)(|f_k| + r),
 // so the ground sphere's huge f_k meets r in a subtraction of two doubles
 // (exact by Sterbenz's lemma when they are within a factor of 2) before
-// anything is squared. The smallest of the three sums of two squares is the
-// one that leaves the largest component out: no branch picks k. What f = o - C
-// lost in double (its two_sum error, lo) enters to first order, 2 f.lo.
+// anything is squared (split_at_largest_axis). What f = o - C lost in
+// double (its two_sum error, lo) enters to first order, 2 f.lo.
 // Each part is off by at most about 2 double rounding errors of its own
 // size (2^-52 of rest + |pair|); the result is used when that stays below
 // 2^-25 of c (1 ULP of the float t at most), i.e. |c| >= 2^-27 (rest +
@@ -444,25 +456,16 @@ inline double_word<double> cross_component(float o1, float o2, float c1, float c
 // of the surface in units of the farthest coordinate) is computed again
 // from the floats (c_from_floats), unless only the sign of c matters
 // (out_of_range_sign: a c of that sign puts the root c/q outside the
-// range). Its usual case, f exact, is c_near_surface_usual (below), inline
-// in sphere_in_double; this whole version runs for an inexact f and for
-// sphere_grazing.
+// range). Its usual case, f exact (lo = 0: the terms in lo vanish), is
+// c_near_surface_usual (below), inline in sphere_in_double; this version
+// runs for an inexact f and for sphere_grazing.
 [[gnu::noinline]] inline double c_near_surface(const vec3<float>& o, const sphere<float>& s, double out_of_range_sign) {
     const vec3<float>& C = s.center;
     const vec3<double> f = convert<double>(o) - convert<double>(C);
     const double r = s.radius;
-    const double lx = two_sum_error(double(o.x), -double(C.x), f.x), ly = two_sum_error(double(o.y), -double(C.y), f.y),
-                 lz = two_sum_error(double(o.z), -double(C.z), f.z);
-    const double x2 = f.x * f.x, y2 = f.y * f.y, z2 = f.z * f.z;
-    const double rest = std::min(std::min(y2 + z2, x2 + z2), x2 + y2);
-    const double big = std::max(std::max(std::fabs(f.x), std::fabs(f.y)), std::fabs(f.z));
-    const double pair = (big - r) * (big + r);
-    if ((lx == 0) & (ly == 0) & (lz == 0)) {  // f exact: the usual case
-        const double c = rest + pair;
-        if (0x1p-27 * (rest + std::fabs(pair)) <= std::fabs(c)) return c;
-        if (out_of_range_sign * c > 0x1p-49 * (rest + std::fabs(pair))) return c;
-        return c_from_floats(o, s);
-    }
+    const double lx = two_diff_error(double(o.x), double(C.x), f.x), ly = two_diff_error(double(o.y), double(C.y), f.y),
+                 lz = two_diff_error(double(o.z), double(C.z), f.z);
+    const auto [rest, pair] = split_at_largest_axis(f, r);
     const double lost = 2 * (f.x * lx + f.y * ly + f.z * lz);
     const double c = (rest + lost) + pair;
     // Bounds of the error: 2^-51 (rest + |pair|) from the roundings, 2^-51 |lost|
@@ -502,11 +505,7 @@ typedef double double2 __attribute__((vector_size(16)));
     const double lz = two_diff_error(double(o.z), double(C.z), f.z);
     const double2 l_xy2 = l_xy * l_xy;
     if (l_xy2[0] + l_xy2[1] + lz * lz != 0) return c_near_surface(o, s, out_of_range_sign);
-    const double r = s.radius;
-    const double x2 = f.x * f.x, y2 = f.y * f.y, z2 = f.z * f.z;
-    const double rest = std::min(std::min(y2 + z2, x2 + z2), x2 + y2);
-    const double big = std::max(std::max(std::fabs(f.x), std::fabs(f.y)), std::fabs(f.z));
-    const double pair = (big - r) * (big + r);
+    const auto [rest, pair] = split_at_largest_axis(f, s.radius);
     const double size = rest + std::fabs(pair), c = rest + pair;
     if (0x1p-27 * size <= std::fabs(c) || out_of_range_sign * c > 0x1p-49 * size) return c;
     return c_from_floats(o, s);
