@@ -396,12 +396,14 @@ double peak_rss_gb() {
     return double(u.ru_maxrss) / (1024.0 * 1024.0);  // ru_maxrss is in KiB on Linux
 }
 
+#ifdef RT_HAVE_EMBREE
 // The camera the scene file describes, in float, for Embree's rays.
 pinhole_camera<float> float_camera(const scene_description& d, int size) {
     return pinhole_camera<float>(camera_frame<float>::look_at(convert<float>(d.camera.eye), convert<float>(d.camera.look_at),
                                                               convert<float>(d.camera.up)),
                                  float(d.camera.fov_degrees), size, size);
 }
+#endif
 
 // Our tree against Embree's on one scene: build, then primary hits only.
 // Our traced time is trace_repeats traces after one build, without that
@@ -485,7 +487,6 @@ void big_scenes(int size, bool flake) {
     }
     if (!flake) return;
     const int fsize = 1024;
-    constexpr int flake_trace_repeats = 4;
     const scene_description d = generated_scene(spd_database::balls, 8, {2.1, 1.3, 1.7}, {0, 0, 0}, fsize, generation);
     std::printf("\n6. the sphereflake, SPD balls size 8: %zu spheres and a ground plane, %dx%d, one light with shadows\n",
                 d.world.spheres.size(), fsize, fsize);
@@ -508,6 +509,7 @@ void big_scenes(int size, bool flake) {
     std::fflush(stdout);
 #ifdef RT_HAVE_EMBREE
     if (embree_scene::spheres_supported()) {
+        constexpr int flake_trace_repeats = 4;
         std::unique_ptr<embree_scene> e;
         const double ebuild = best_seconds([&] { e = std::make_unique<embree_scene>(d); }, 1);
         const pinhole_camera<float> cam = float_camera(d, fsize);
