@@ -243,8 +243,9 @@ def geometric_derivation(notation):
 
 def shrinking_tmax():
     svg = Svg(900, 470, "The closest-hit loop shrinks tmax")
-    walls = [5.0, 2.0, 8.0, 1.0]
-    tmin, tend = 0.5, 10.0
+    # tmin = 1 as for a primary ray (the image plane); every wall lies beyond it.
+    walls = [5.0, 3.0, 8.0, 2.0]
+    tmin, tend = 1.0, 10.0
     x0, x1 = 150, 560
 
     def X(t):
@@ -286,7 +287,9 @@ def shrinking_tmax():
         if hit is not None:
             svg.dot(X(hit), yy, HIT, 6)
         svg.text(X(tend) + 30, yy + 5, note, size=13, colour=HIT if hit is not None else GUIDE)
-    svg.text(20, 455, "The answer: object 3 at t = 1, whatever the order of the list.", size=14)
+    nearest = min(range(len(walls)), key=lambda i: walls[i])
+    svg.text(20, 455, f"The answer: object {nearest} at t = {num(walls[nearest])}, whatever the order of the list.",
+             size=14)
     return svg
 
 
