@@ -117,8 +117,8 @@ using occlusion_test = std::function<bool(const ray<T>& r, const interval<T>& ra
 //                  dot(normal, to_viewer) < 0 the normal is flipped first.
 //   to_viewer      towards the eye, any length > 0
 //   m              the surface's material at this point: m.diffuse is the
-//                  diffuse colour there (resolve a checker pattern first,
-//                  see checker.hpp), m.specular and m.shininess the highlight
+//                  diffuse colour there (a checker pattern already resolved,
+//                  rt::material_at in common/scene.hpp), m.specular and m.shininess the highlight
 //   lights         point lights; light.intensity is the colour it delivers at
 //                  distance 1, so at distance d it delivers intensity / d^2
 //   ambient        light arriving from everywhere, unshadowed
