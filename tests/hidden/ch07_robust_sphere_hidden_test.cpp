@@ -486,7 +486,7 @@ TEST_CASE_TEMPLATE("hidden: bad input is a miss never a NaN", T, RT_SCALARS) {
                       "a miss, never a NaN hit");
 }
 
-// Cases an earlier suite never built: half_b exactly 0, off-axis huge spheres, the format's limits, secondary rays.
+// Cases the tests above do not build: half_b exactly 0, off-axis huge spheres, the format's limits, secondary rays.
 
 TEST_CASE_TEMPLATE("hidden: half_b exactly 0 (from the centre, or from inside at right angles)", T, RT_SCALARS) {
     // Centre (10, -20, 30), radius 2.5; |(3, 4, 0)| = 5, so from the centre t = 2.5 / 5 = 0.5 both ways.

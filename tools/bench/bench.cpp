@@ -408,9 +408,9 @@ pinhole_camera<float> float_camera(const scene_description& d, int size) {
 // Our tree against Embree's on one scene: build, then primary hits only.
 // Our traced time is trace_repeats traces after one build, without that
 // build (best_seconds_after_setup), divided by trace_repeats; all CPU time per
-// thread, best of `runs`. (It used to be a whole run minus a build timed
-// in another run: on the sphereflake that difference was mostly the two
-// builds' spread.)
+// thread, best of `runs`. (A whole run minus a build timed in another run
+// would not do: on the sphereflake that difference is mostly the two builds'
+// spread.)
 constexpr int trace_repeats = 16;
 void tree_row(const char* name, const scene_description& d, int size) {
     scene_plan plan = make_plan(d, 1e-3, std::nullopt);
