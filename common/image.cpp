@@ -22,13 +22,35 @@ float srgb8_to_linear(unsigned char value) {
     return encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
 }
 
-void write_png(const image& img, const std::string& path) {
-    if (img.width <= 0 || img.height <= 0) throw std::runtime_error(path + ": cannot write an empty image");
+namespace {
+// The 8-bit sRGB bytes a PNG of img holds, row by row.
+std::vector<unsigned char> srgb8_bytes(const image& img) {
     std::vector<unsigned char> bytes(img.pixels.size() * 3);
     for (size_t i = 0; i < img.pixels.size(); ++i)
         for (int c = 0; c < 3; ++c) bytes[3 * i + size_t(c)] = linear_to_srgb8(img.pixels[i][c]);
+    return bytes;
+}
+
+void append_bytes(void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<unsigned char>*>(context);
+    out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+}
+}  // namespace
+
+void write_png(const image& img, const std::string& path) {
+    if (img.width <= 0 || img.height <= 0) throw std::runtime_error(path + ": cannot write an empty image");
+    const std::vector<unsigned char> bytes = srgb8_bytes(img);
     if (!stbi_write_png(path.c_str(), img.width, img.height, 3, bytes.data(), img.width * 3))
         throw std::runtime_error(path + ": could not write the PNG file (does its folder exist?)");
+}
+
+std::vector<unsigned char> encode_png(const image& img) {
+    if (img.width <= 0 || img.height <= 0) throw std::runtime_error("cannot encode an empty image as PNG");
+    const std::vector<unsigned char> bytes = srgb8_bytes(img);
+    std::vector<unsigned char> png;
+    if (!stbi_write_png_to_func(append_bytes, &png, img.width, img.height, 3, bytes.data(), img.width * 3))
+        throw std::runtime_error("could not encode the image as PNG");
+    return png;
 }
 
 image read_png(const std::string& path) {

@@ -32,6 +32,9 @@ float srgb8_to_linear(unsigned char encoded);
 // Writes img as a PNG. Throws std::runtime_error naming the file on failure.
 void write_png(const image& img, const std::string& path);
 
+// The bytes of img as a PNG file (as write_png would write them).
+std::vector<unsigned char> encode_png(const image& img);
+
 // Reads a PNG (any channel count; grey is expanded to RGB). Throws
 // std::runtime_error naming the file when it cannot be read.
 image read_png(const std::string& path);

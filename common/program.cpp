@@ -2,6 +2,7 @@
 
 #include "chapter_scenes.hpp"
 #include "image_compare.hpp"
+#include "picture_page.hpp"
 #include "stub.hpp"
 #include "timing.hpp"
 
@@ -10,6 +11,10 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <iterator>
+#include <vector>
 
 namespace rt {
 
@@ -54,14 +59,49 @@ std::string diff_path(const std::string& out) {
     return (p.parent_path() / (p.stem().string() + "-diff.png")).string();
 }
 
-// --compare: prints the verdict; a picture past tolerance leaves its
-// difference image next to the output. Returns true when the pictures match.
+// "out/ch04.png" -> "out/ch04-compare.html"
+std::string page_path(const std::string& out) {
+    std::filesystem::path p(out);
+    return (p.parent_path() / (p.stem().string() + "-compare.html")).string();
+}
+
+std::vector<unsigned char> file_bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error(path + ": cannot be read");
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The comparison as a page (common/picture_page.hpp) next to the output: the reference, the
+// render and the difference side by side, a slider between the first two.
+void write_compare_page(const chapter_program& program, const image& img, const image& diff,
+                        const compare_result& r, const std::string& verdict, const program_options& opt) {
+    picture_page page;
+    page.title = program.id + " " + program.title + ": your render and the reference " + opt.compare;
+    page.id = program.id;
+    page.caption = verdict;
+    page.reference_png = file_bytes(opt.compare);
+    page.render_png = encode_png(img);
+    if (r.same_size) page.diff_png = encode_png(diff);
+    const std::string path = page_path(opt.out);
+    std::ofstream out(path, std::ios::binary);
+    out << picture_page_html(page);
+    if (!out.flush()) throw std::runtime_error(path + ": could not write the page");
+    std::printf("%s comparison page (reference, render, difference): %s\n", program.id.c_str(), path.c_str());
+}
+
+// --compare: prints the verdict and writes the comparison page; a picture past tolerance also
+// leaves its difference image next to the output. Returns true when the pictures match.
 bool compare_with_reference(const chapter_program& program, const image& img, const program_options& opt) {
     const compare_tolerance tol;
     image diff;
     const compare_result r = compare_images(img, read_png(opt.compare), tol, &diff);
-    std::printf("%s compare with %s: %s: %s\n", program.id.c_str(), opt.compare.c_str(),
-                r.within(tol) ? "match" : "MISMATCH", r.summary(tol).c_str());
+    const std::string verdict = std::string(r.within(tol) ? "match" : "MISMATCH") + ": " + r.summary(tol);
+    std::printf("%s compare with %s: %s\n", program.id.c_str(), opt.compare.c_str(), verdict.c_str());
+    try {  // a page that cannot be written must not hide the verdict
+        write_compare_page(program, img, diff, r, verdict, opt);
+    } catch (const std::exception& e) {
+        std::printf("%s comparison page not written: %s\n", program.id.c_str(), e.what());
+    }
     if (!r.within(tol) && r.same_size) {
         const std::string path = diff_path(opt.out);
         try {  // a picture that cannot be written must not hide the verdict

@@ -9,7 +9,9 @@
 //                    [--scene FILE.json]   (chapters 03 on, which draw scene files)
 //
 // With --compare, a picture past tolerance also leaves its difference image
-// next to the output (out/ch04-diff.png for out/ch04.png) and names it.
+// next to the output (out/ch04-diff.png for out/ch04.png) and names it, and
+// every comparison writes a page showing the reference, the render and the
+// difference side by side (out/ch04-compare.html, common/picture_page.hpp).
 //
 // and prints one line such as
 //   ch01 unit sphere: 400x300, 3.1 ms, 38.7 Mrays/s -> out/ch01.png

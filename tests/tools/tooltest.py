@@ -29,7 +29,7 @@ FIXTURES = os.path.join(REPO, "tests", "fixtures", "adversarial")
 ROOT = os.geteuid() == 0
 
 # The folders the tests work in, from the command line (see main()).
-config = argparse.Namespace(work=None, build_dir=None, kit=None, imgcmp=None)
+config = argparse.Namespace(work=None, build_dir=None, kit=None, imgcmp=None, program=None)
 
 
 def main():
@@ -39,6 +39,7 @@ def main():
     p.add_argument("--build-dir", help="the instructor's grading tree (made by grader.baseline)")
     p.add_argument("--kit", help="the student kit exported by grader.export.kit")
     p.add_argument("--imgcmp", help="the imgcmp program of this build")
+    p.add_argument("--program", help="a chapter program of this build")
     args, names = p.parse_known_args()
     for key, value in vars(args).items():
         setattr(config, key, os.path.abspath(value) if value else None)

@@ -57,7 +57,7 @@ KIT_SHIP = {
     # A measurement that runs the student's chapter 02 code (README, "Shadow acne").
     "programs": ["chapters/06-shading/acne_study.cpp"],
     "pictures": [CHAPTER + "**.png", CHAPTER + "**.svg", "tests/common/data/*.png"],
-    "common/": ["common/*.hpp", "common/*.cpp"],
+    "common/": ["common/*.hpp", "common/*.cpp", "common/*.html"],
     "public tests": ["tests/public/chNN_*.cpp", "tests/public/chNN_*.hpp", "tests/manifest.json",
                      "tests/support/**.hpp", "tests/support/**.cpp", "tests/common/*.cpp",
                      "tests/scenes/*_test.cpp", "tests/scenes/*.cmake", "tests/scenes/broken/*.json"],

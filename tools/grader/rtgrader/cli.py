@@ -9,7 +9,7 @@ import time
 import traceback
 from concurrent.futures import ThreadPoolExecutor
 
-from . import fsutil, grading, manifest, results, tree
+from . import dashboard, fsutil, grading, manifest, report, results, tree
 from .sandbox import Limits
 
 
@@ -143,7 +143,8 @@ def grade_main(argv=None):
         # The true total: preparing the tree (when it had to be built) counts too.
         data = results.gradescope(found, notes, time.monotonic() - start, t.chapters())
         results.write(data, out)
-        print(results.summary(data, t.chapters(), out))
+        page = report.write(data, out, t.chapters())
+        print(results.summary(data, t.chapters(), out) + f"\nThe page with your pictures: {page}")
         return 0
     except BaseException as e:  # the file must exist and be valid whatever happened
         message = f"The grader itself failed ({type(e).__name__}): {e}"
@@ -180,13 +181,15 @@ def batch_main(argv=None):
         except Exception as e:
             data = results.failure(f"The grader failed on this submission: {e}")
         results.write(data, out)
+        report.write(data, out, t.chapters())
         print(f"{results.terminal_safe(name)}: {data['score']:g} ({data['execution_time']} s)", file=sys.stderr)
         return name, data
 
     # While they are graded, the submissions are closed to every other user: in the fallback by user
     # a student's compile could otherwise #include a classmate's answer by its path.
     with fsutil.closed_to_others(args.folder), ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
-        graded = list(pool.map(one, names))
+        seconds = {}
+        graded = list(pool.map(dashboard.timed(one, seconds), names))
     chapter_ids = grader.chapter_ids
     table = io.StringIO()
     w = csv.writer(table)
@@ -195,6 +198,7 @@ def batch_main(argv=None):
         per = [sum(x["score"] for x in data["tests"] if x["tags"][0] == c) for c in chapter_ids]
         w.writerow([name, data["score"], sum(x["max_score"] for x in data["tests"])] + per)
     fsutil.write_atomic(os.path.join(out_dir, "scores.csv"), table.getvalue().encode())
+    page = dashboard.for_batch(out_dir, graded, seconds, args.folder, t, chapter_ids)
     print(f"graded {len(graded)} submissions in {time.monotonic() - start:.1f} s -> "
-          f"{os.path.join(args.out, 'scores.csv')}")
+          f"{os.path.join(args.out, 'scores.csv')}, the class at a glance: {page}")
     return 0
