@@ -1,35 +1,65 @@
 // robust_sphere.cpp — YOUR CODE for chapter 07. See robust_sphere.hpp for the
-// contract and README.md for the lecture.
+// contracts and README.md for the lecture. Write the steps in the README's
+// order; each has its own public tests (ctest --preset student -L ch07 -R step1, ...).
 #include "robust_sphere.hpp"
 
 #include "common/stub.hpp"
 
 namespace rt::ch07 {
 
+// Step 1: a = d.d, half_b = f.d and a r^2 - |f x d|^2, as pairs (error_free.hpp).
+template <class T>
+quadratic<T> quarter_discriminant(const scaled_problem<T>& p) {
+    (void)p;
+    RT_NOT_IMPLEMENTED("chapter 07", "quarter_discriminant");
+}
+
+// Step 2: q = -(half_b + copysign(sqrt(quarter_disc), half_b)); roots c / q and q / a, ordered.
+template <class T>
+root_pair<T> stable_roots(wide<T> a, wide<T> half_b, wide<T> c, wide<T> quarter_disc) {
+    (void)a, (void)half_b, (void)c, (void)quarter_disc;
+    RT_NOT_IMPLEMENTED("chapter 07", "stable_roots");
+}
+
+// Step 3: c = f.f - radius^2 from the exact pieces of the squares, summed with sum_k3.
+template <class T>
+wide<T> constant_term(const scaled_problem<T>& p) {
+    (void)p;
+    RT_NOT_IMPLEMENTED("chapter 07", "constant_term");
+}
+
+// Step 4: f = o - C exactly (two_sum), then f and the radius scaled by 2^ef, d by 2^ed.
+template <class T>
+scaled_problem<T> scaled_offset(const sphere<T>& s, const ray<T>& r) {
+    (void)s, (void)r;
+    RT_NOT_IMPLEMENTED("chapter 07", "scaled_offset");
+}
+
+// Step 5: t = t' 2^exponent, rounded to T once.
+template <class T>
+T unscaled_root(wide<T> t_scaled, int exponent) {
+    (void)t_scaled, (void)exponent;
+    RT_NOT_IMPLEMENTED("chapter 07", "unscaled_root");
+}
+
+// Step 6: check the inputs, then steps 4, 1, 3, 2 and 5; pick the root in range; point and normal.
 template <class T>
 std::optional<hit_record<T>> intersect_sphere_robust(const sphere<T>& s, const ray<T>& r, const interval<T>& range) {
-    // Same quadratic as chapter 02, arranged so no step loses digits (README.md, "The exercise"):
-    //   0. f = o - C exactly (two-sum); scale f, radius and d by powers of two when they are
-    //      tiny or huge (for float data you may compute everything in double instead);
-    //   1. disc/4 = a r^2 - |f x d|^2, the perpendicular distance without subtracting squares,
-    //      every product split exactly with std::fma and kept as a pair hi + lo;
-    //   2. roots from the stable pair q = -(half_b + sign(half_b) sqrt(disc/4)), c / q and q / a;
-    //   3. c = f.f - radius^2 from the exact pieces of the squares, added with a compensated sum.
-    // Then pick the nearer root inside range, undo the scaling, and fill in t, point and normal.
-    (void)s;
-    (void)r;
-    (void)range;
+    (void)s, (void)r, (void)range;
     RT_NOT_IMPLEMENTED("chapter 07", "intersect_sphere_robust");
 }
 
 // Compile the exercise for every precision the course uses (long double is
 // the chapter program's reference). Leave these lines as they are.
-template std::optional<hit_record<float>> intersect_sphere_robust(const sphere<float>&, const ray<float>&,
-                                                                  const interval<float>&);
-template std::optional<hit_record<double>> intersect_sphere_robust(const sphere<double>&, const ray<double>&,
-                                                                   const interval<double>&);
-template std::optional<hit_record<long double>> intersect_sphere_robust(const sphere<long double>&,
-                                                                        const ray<long double>&,
-                                                                        const interval<long double>&);
+#define RT_CH07_INSTANTIATE(T)                                                                                   \
+    template quadratic<T> quarter_discriminant(const scaled_problem<T>&);                                       \
+    template root_pair<T> stable_roots<T>(wide<T>, wide<T>, wide<T>, wide<T>);                                  \
+    template wide<T> constant_term(const scaled_problem<T>&);                                                   \
+    template scaled_problem<T> scaled_offset(const sphere<T>&, const ray<T>&);                                  \
+    template T unscaled_root<T>(wide<T>, int);                                                                  \
+    template std::optional<hit_record<T>> intersect_sphere_robust(const sphere<T>&, const ray<T>&, const interval<T>&);
+RT_CH07_INSTANTIATE(float)
+RT_CH07_INSTANTIATE(double)
+RT_CH07_INSTANTIATE(long double)
 
 }  // namespace rt::ch07

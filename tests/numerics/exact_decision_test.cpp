@@ -17,7 +17,7 @@ namespace {
 // x + y exactly representable in T?
 template <class T>
 bool sum_is_exact(T x, T y) {
-    return fm::two_sum(x, y).lo == 0 && std::isfinite(x + y);
+    return rt::two_sum(x, y).lo == 0 && std::isfinite(x + y);
 }
 template <class T>
 bool sum_is_exact(const vec3<T>& x, const vec3<T>& y) {

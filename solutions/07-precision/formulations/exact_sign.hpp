@@ -42,7 +42,7 @@
 // direction_scale, so that its answers match the formulations'.
 #pragma once
 
-#include "error_free.hpp"
+#include "07-precision/error_free.hpp"
 
 #include "common/math.hpp"
 

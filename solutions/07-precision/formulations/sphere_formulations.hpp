@@ -26,7 +26,7 @@
 // above a quarter of T's largest number, so that o - C cannot overflow.
 #pragma once
 
-#include "error_free.hpp"
+#include "07-precision/error_free.hpp"
 
 #include "common/interval.hpp"
 #include "common/ray.hpp"

@@ -1,5 +1,10 @@
 // error_free.hpp — exact sums and products, and numbers made of two floats.
 //
+// Chapter 07's toolbox (README, "Exact pieces"), given to you: the exercise
+// steps build on it, and so do the reference solution, the formulation study
+// (solutions/07-precision/formulations) and the renderer. One vocabulary for
+// error-free arithmetic in the whole course: double_word, two_sum, two_prod.
+//
 // The rounding error of one addition or multiplication is itself a
 // floating-point number, and it can be computed exactly:
 //   * two_sum(a, b)  gives s = fl(a + b) and e with  a + b = s + e  exactly
@@ -22,8 +27,9 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
-namespace rt::formulations {
+namespace rt {
 
 // A number hi + lo with |lo| <= half an ulp of hi.
 template <class T>
@@ -65,9 +71,12 @@ inline double_word<T> fast_two_sum(T a, T b) {
 // Veltkamp's split: a = hi + lo, each half with at most half the
 // significand bits, so products of halves are exact (Dekker's product).
 // Valid while |a| stays well below the overflow threshold / 2^(bits/2).
+// The factor is 2^ceil(p/2) + 1 for a p-bit significand: 2^12 + 1 for
+// float, 2^27 + 1 for double, 2^32 + 1 for x86's 64-bit long double.
 template <class T>
 inline double_word<T> split(T a) {
-    constexpr T factor = sizeof(T) == sizeof(float) ? T(4097) : T(134217729);  // 2^12 + 1, 2^27 + 1
+    constexpr int half = (std::numeric_limits<T>::digits + 1) / 2;
+    constexpr T factor = T(1ull << half) + T(1);
     T c = factor * a;
     T hi = c - (c - a);
     return {hi, a - hi};
@@ -170,4 +179,4 @@ inline bool is_negative(double_word<T> x) {
     return x.hi < 0 || (x.hi == 0 && x.lo < 0);
 }
 
-}  // namespace rt::formulations
+}  // namespace rt
