@@ -134,7 +134,7 @@ T unscaled_root(wide<T> t_scaled, int exponent);
 //     point   r.at(t)
 //     normal  the outward unit normal at the hit, (point - s.center) / radius,
 //             computed from the centre-relative vector f + t d (README,
-//             "Step 6")
+//             "The normal, and the whole test")
 //     object  left at -1
 //   A tangent ray (one double root) is a hit. Never a NaN or infinite t:
 //   NaN or infinity in any input is a miss.

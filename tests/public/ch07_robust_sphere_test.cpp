@@ -47,7 +47,7 @@ sphere<T> ground() {
 
 }  // namespace
 
-TEST_CASE_TEMPLATE("a unit sphere 4100 radii away is hit through its middle and missed beside it", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("step6: a unit sphere 4100 radii away is hit through its middle and missed beside it", T, RT_SCALARS) {
     // An orthographic ray along -z from x = 0.75: the sphere's silhouette has radius 1.
     const sphere<T> s{{0, 0, T(-4100)}, T(1)};
     auto hit = intersect_sphere_robust(s, ray<T>{{T(0.75), 0, 0}, {0, 0, -1}}, ahead<T>());
@@ -67,7 +67,7 @@ TEST_CASE_TEMPLATE("a unit sphere 4100 radii away is hit through its middle and 
                       << describe(t_of(beside)));
 }
 
-TEST_CASE_TEMPLATE("a unit sphere 1e5 radii away is still hit and missed correctly", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("step6: a unit sphere 1e5 radii away is still hit and missed correctly", T, RT_SCALARS) {
     const sphere<T> s{{0, 0, T(-1e5)}, T(1)};
     auto hit = intersect_sphere_robust(s, ray<T>{{T(0.75), 0, 0}, {0, 0, -1}}, ahead<T>());
     REQUIRE_MESSAGE(hit.has_value(),
@@ -80,7 +80,7 @@ TEST_CASE_TEMPLATE("a unit sphere 1e5 radii away is still hit and missed correct
                                            << describe(t_of(beside)));
 }
 
-TEST_CASE_TEMPLATE("a slanted ray from far away keeps the perpendicular distance", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("step6: a slanted ray from far away keeps the perpendicular distance", T, RT_SCALARS) {
     // From the origin, aimed 0.75 to the side of a unit sphere 4100 away: the
     // direction is not unit length and not along an axis.
     const sphere<T> s{{0, 0, T(-4100)}, T(1)};
@@ -94,7 +94,7 @@ TEST_CASE_TEMPLATE("a slanted ray from far away keeps the perpendicular distance
                       << describe(t_of(hit)));
 }
 
-TEST_CASE_TEMPLATE("the huge ground sphere is hit accurately from 1 unit above", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("step6: the huge ground sphere is hit accurately from 1 unit above", T, RT_SCALARS) {
     // Radius 1e6, the ray starts 1 above the top. Straight down the hit is at t = 1 exactly.
     const ray<T> down{{0, 1, 0}, {0, -1, 0}};
     auto hit = intersect_sphere_robust(ground<T>(), down, ahead<T>());
@@ -126,7 +126,7 @@ TEST_CASE_TEMPLATE("the huge ground sphere is hit accurately from 1 unit above",
     }
 }
 
-TEST_CASE_TEMPLATE("rays touching a sphere are hits and rays just outside are misses", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("step6: rays touching a sphere are hits and rays just outside are misses", T, RT_SCALARS) {
     // Sphere of radius 1 at distance 5: a ray at height y = 1 touches its top.
     const sphere<T> s{{0, 0, -5}, T(1)};
     auto touching = intersect_sphere_robust(s, ray<T>{{0, 1, 0}, {0, 0, -1}}, ahead<T>());
@@ -155,7 +155,7 @@ TEST_CASE_TEMPLATE("rays touching a sphere are hits and rays just outside are mi
                   "a ray 2^-10 outside the top of a unit sphere 4100 away must miss; got " << describe(t_of(far_outside)));
 }
 
-TEST_CASE_TEMPLATE("a ray starting inside the sphere hits the far root", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("step6: a ray starting inside the sphere hits the far root", T, RT_SCALARS) {
     const sphere<T> s{{0, 0, -5}, T(2)};
     auto hit = intersect_sphere_robust(s, ray<T>{{0, 0, -5}, {0, 0, -1}}, ahead<T>());
     REQUIRE_MESSAGE(hit.has_value(), "from the centre every ray leaves the sphere: a hit, got a miss");
@@ -169,7 +169,7 @@ TEST_CASE_TEMPLATE("a ray starting inside the sphere hits the far root", T, RT_S
     CHECK_MESSAGE(close(up->t, T(1)), "leaving at z = -3 means t = 1; got " << describe(t_of(up)));
 }
 
-TEST_CASE_TEMPLATE("an origin on the surface does not hit itself but crosses the sphere inwards", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("step6: an origin on the surface does not hit itself but crosses the sphere inwards", T, RT_SCALARS) {
     const sphere<T> s{{0, 0, 0}, T(1)};
     auto outwards = intersect_sphere_robust(s, ray<T>{{0, 0, 1}, {0, 0, 1}}, ahead<T>());
     CHECK_MESSAGE(!outwards.has_value(),
@@ -180,7 +180,7 @@ TEST_CASE_TEMPLATE("an origin on the surface does not hit itself but crosses the
     CHECK_MESSAGE(close(inwards->t, T(2)), "the far side is at t = 2; got " << describe(t_of(inwards)));
 }
 
-TEST_CASE_TEMPLATE("the robust test keeps chapter 02's contract", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("step6: the robust test keeps chapter 02's contract", T, RT_SCALARS) {
     const sphere<T> s{{0, 0, -4}, T(1)};
     const ray<T> r{{0, 0, 0}, {0, 0, -1}};  // roots t = 3 and t = 5
 
@@ -213,7 +213,7 @@ TEST_CASE_TEMPLATE("the robust test keeps chapter 02's contract", T, RT_SCALARS)
                   "with direction (0, 0, -2) the hit (0, 0, -3) is at t = 1.5: keep a = d.d; got " << describe(t_of(scaled)));
 }
 
-TEST_CASE_TEMPLATE("the smallest t in range is returned even when the sphere is behind", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("step6: the smallest t in range is returned even when the sphere is behind", T, RT_SCALARS) {
     // With the whole line as the range, the roots t = -5 and t = -3 both count: the answer is -5.
     // Here half_b > 0, so q < 0 and q / a is the nearer root, c / q the farther.
     const sphere<T> s{{0, 0, -4}, T(1)};
@@ -225,7 +225,7 @@ TEST_CASE_TEMPLATE("the smallest t in range is returned even when the sphere is 
                       << describe(t_of(hit)));
 }
 
-TEST_CASE_TEMPLATE("the normal points outwards and has unit length on far and huge spheres", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("step6: the normal points outwards and has unit length on far and huge spheres", T, RT_SCALARS) {
     auto far = intersect_sphere_robust(sphere<T>{{0, 0, T(-4100)}, T(1)}, ray<T>{{T(0.75), 0, 0}, {0, 0, -1}},
                                        ahead<T>());
     REQUIRE_MESSAGE(far.has_value(), "the far sphere must be hit");
@@ -238,7 +238,7 @@ TEST_CASE_TEMPLATE("the normal points outwards and has unit length on far and hu
                   "on the ground the outward normal points up, (0, 1, 0) to within 2e-6; got " << describe(huge->normal));
 }
 
-TEST_CASE_TEMPLATE("bad input is a miss never a NaN", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("step6: bad input is a miss never a NaN", T, RT_SCALARS) {
     const T nan = std::numeric_limits<T>::quiet_NaN();
     const sphere<T> s{{0, 0, -4}, T(1)};
     CHECK_MESSAGE(!intersect_sphere_robust(s, ray<T>{{0, 0, 0}, {0, 0, 0}}, ahead<T>()).has_value(),
@@ -263,7 +263,7 @@ T extreme_scale(bool huge) {
 }
 }  // namespace
 
-TEST_CASE_TEMPLATE("tiny and huge spheres are found by scaling with powers of two", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("step6: tiny and huge spheres are found by scaling with powers of two", T, RT_SCALARS) {
     // The lecture's 4-units-away unit sphere, shrunk or blown up by s: every
     // input is s times a small number, so the exact hits are s times the
     // unscaled ones. r^2 = s^2 under- or overflows T: without step 0
@@ -290,7 +290,7 @@ TEST_CASE_TEMPLATE("tiny and huge spheres are found by scaling with powers of tw
     }
 }
 
-TEST_CASE_TEMPLATE("a subnormal direction is not a zero direction", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("step6: a subnormal direction is not a zero direction", T, RT_SCALARS) {
     // d = 2^(min_exponent - 20): below the smallest normal number, so d.d is
     // 0 in T, but the ray still moves. The sphere is small enough for t to fit.
     const T d = std::ldexp(T(1), std::numeric_limits<T>::min_exponent - 20);
@@ -302,7 +302,7 @@ TEST_CASE_TEMPLATE("a subnormal direction is not a zero direction", T, RT_SCALAR
                       << describe(t_of(hit)));
 }
 
-TEST_CASE_TEMPLATE("an origin and a centre near the largest number: o - C must not overflow", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("step6: an origin and a centre near the largest number: o - C must not overflow", T, RT_SCALARS) {
     // M is T's largest finite number. o = -M and C = +M are finite, but o - C = -2M is not; the near
     // root is t = M (exact, and a number of T). Quarter o, C and r before the two-sum (README, step 0).
     const T M = std::numeric_limits<T>::max();
