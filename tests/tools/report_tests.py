@@ -10,6 +10,7 @@ ReportPage and Browser need no grading: they build the pages from results data m
 (results.json's schema, PNG pictures written by png() below), so every case is known.
 """
 
+import fnmatch
 import json
 import os
 import re
@@ -111,7 +112,9 @@ document.addEventListener('securitypolicyviolation', e => rtRefused.push(e.block
 # Put last in <body>: after the load event, what a person would see, as JSON in <pre id="rt-check">.
 CHECK = """<script>
 window.addEventListener('load', () => setTimeout(() => {
-  const r = {sections: [...document.querySelectorAll('section.chapter')].map(s => s.id), images: [], sliders: []};
+  const r = {sections: [...document.querySelectorAll('body > section')].map(s => s.id), images: [], sliders: [],
+             drawings: [...document.querySelectorAll('svg')].map(g => { const b = g.getBoundingClientRect();
+                                                                       return [b.width, b.height]; })};
   for (const img of document.images) {
     const box = img.getBoundingClientRect();
     r.images.push({alt: img.alt, complete: img.complete, natural: [img.naturalWidth, img.naturalHeight],
@@ -159,6 +162,10 @@ def look_at(page, work):
     with open(page, encoding="utf-8") as f:
         text = f.read()
     text = text.replace("<head>", "<head>\n" + WATCH, 1).replace("</body>", CHECK + "\n</body>", 1)
+    # A page without scripts of its own (the dashboard) forbids them all: the copy allows inline ones,
+    # for the checks; every other kind of load stays as the page's policy says.
+    text = re.sub(r"(Content-Security-Policy\"\s+content=\"(?:(?!script-src)[^\"])*)\"",
+                  lambda m: m.group(1) + "; script-src 'unsafe-inline'\"", text, count=1)
     copy = os.path.join(os.path.dirname(page), "checked-" + os.path.basename(page))
     with open(copy, "w", encoding="utf-8") as f:
         f.write(text)
@@ -244,6 +251,158 @@ class ReportPage(ToolTest):
             self.assertIn("could not be made", f.read())
 
 
+# --- A class for the dashboard ---------------------------------------------------------------------
+CH01 = os.path.join(REPO, "solutions", "01-unit-sphere", "unit_sphere.cpp")
+WRONG = os.path.join(REPO, "tests", "fixtures", "wrong", "ch01")
+# A correct chapter 01 written independently of the solutions: the full quadratic instead of half b,
+# both roots tried in a loop, other names and comments. It shares what the exercise forces.
+INDEPENDENT = """// My intersection with the unit sphere.
+#include "01-unit-sphere/unit_sphere.hpp"
+
+#include <cmath>
+
+namespace rt::ch01 {
+
+template <class T>
+std::optional<T> intersect_unit_sphere(const ray<T>& r, const interval<T>& range) {
+    const T qa = dot(r.direction, r.direction);
+    if (!(qa > T(0))) return std::nullopt;          // not a ray
+    const T qb = T(2) * dot(r.origin, r.direction);
+    const T qc = dot(r.origin, r.origin) - T(1);
+    const T d = qb * qb - T(4) * qa * qc;
+    if (d >= T(0)) {                                 // NaN fails this too
+        const T s = std::sqrt(d);
+        const T candidates[2] = {(-qb - s) / (T(2) * qa), (-qb + s) / (T(2) * qa)};
+        for (const T t : candidates)
+            if (range.contains(t)) return t;
+    }
+    return std::nullopt;
+}
+
+template std::optional<float> intersect_unit_sphere(const ray<float>&, const interval<float>&);
+template std::optional<double> intersect_unit_sphere(const ray<double>&, const interval<double>&);
+
+}  // namespace rt::ch01
+"""
+RENAMES = {"discriminant": "disc", "half_b": "hb", "near_t": "t_near", "far_t": "t_far", "root": "sq"}
+
+
+def renamed(text, style=0):
+    """A copy as a student hides one: variables renamed, comments dropped, and (style 1) spacing changed."""
+    for old, new in RENAMES.items():
+        text = re.sub(rf"\b{old}\b", new, text)
+    text = re.sub(r"//[^\n]*", "", text)
+    if style:
+        text = re.sub(r" = ", "=", text).replace("    ", "  ")
+    return text
+
+
+def with_bug(name):
+    """The solutions' chapter 01 with the wrong-implementation fixture NAME's patch applied."""
+    out = os.path.join(config.work, "patched", name + ".cpp")
+    os.makedirs(os.path.dirname(out), exist_ok=True)
+    subprocess.run(["patch", "-s", "-o", out, CH01, os.path.join(WRONG, name, "bug.patch")], check=True, cwd=REPO)
+    with open(out) as f:
+        return f.read()
+
+
+def must_fail(name):
+    """The hidden test cases fixture NAME fails, and no other hidden one (tests/fixtures/wrong/)."""
+    with open(os.path.join(WRONG, name, "expect_fail.txt")) as f:
+        return [line.strip() for line in f if line.strip() and not line.startswith("#")]
+
+
+class Dashboard(ToolTest):
+    """grade-batch on a class of ten: the solutions, a renamed copy of them, an independent correct answer,
+    three copies of one classic mistake, two of another, one of a third, and one that does not build."""
+
+    @classmethod
+    def setUpClass(cls):
+        with open(CH01) as f:
+            solution = f.read()
+        tmin, closed, far = with_bug("ignores-tmin"), with_bug("closed-interval"), with_bug("far-root")
+        cls.bugs = {"tmin-a": "ignores-tmin", "tmin-b": "ignores-tmin", "tmin-c": "ignores-tmin",
+                    "closed-a": "closed-interval", "closed-b": "closed-interval", "far": "far-root"}
+        cls.files = {"solution": solution, "solution-renamed": renamed(solution), "independent": INDEPENDENT,
+                     "tmin-a": tmin, "tmin-b": renamed(tmin), "tmin-c": renamed(tmin, 1),
+                     "closed-a": closed, "closed-b": renamed(closed, 1), "far": far,
+                     "broken": solution.replace("return std::nullopt;\n}", "return std::nullopt\n}")}
+        cls.folder = os.path.join(config.work, "class")
+        shutil.rmtree(cls.folder, ignore_errors=True)
+        for name, text in cls.files.items():
+            os.makedirs(os.path.join(cls.folder, name, "chapters", "01-unit-sphere"))
+            with open(os.path.join(cls.folder, name, "chapters", "01-unit-sphere", "unit_sphere.cpp"), "w") as f:
+                f.write(text)
+        for dirpath, _, _ in os.walk(cls.folder):
+            os.chmod(dirpath, 0o755)
+        cls.out = os.path.join(config.work, "class-out")
+        shutil.rmtree(cls.out, ignore_errors=True)
+        cls.batch = subprocess.run([sys.executable, os.path.join(REPO, "tools", "grader", "grade-batch"), cls.folder,
+                                  "--out", cls.out, "--build-dir", config.build_dir, "--chapters", "01",
+                                  "--jobs", "2", "--timeout", "10", "--render-timeout", "20"],
+                                 capture_output=True, text=True, timeout=900)
+        print(cls.batch.stdout[-3000:], cls.batch.stderr[-3000:])
+        with open(os.path.join(cls.out, "dashboard.json")) as f:
+            cls.data = json.load(f)
+
+    def test_written_beside_the_scores(self):
+        self.assertEqual(self.batch.returncode, 0)
+        for name in ("dashboard.html", "dashboard.json", "failures.csv", "similarity.csv", "scores.csv"):
+            self.assertTrue(os.path.isfile(os.path.join(self.out, name)), name)
+        self.assertIn(os.path.join(self.out, "dashboard.html"), self.batch.stdout, "the summary names the page")
+
+    def test_failed_concepts_ranked_by_how_many_failed_them(self):
+        """Each hidden test is counted once per submission whose mistake fails it (exactly the fixtures'
+        expect_fail.txt), and the list is sorted by that count."""
+        counts = {t["test"]: t["failed"] for t in self.data["tests"]}
+        hidden = [name for name in counts if name.startswith("ch01.hidden.")]
+        self.assertTrue(hidden, "no hidden test in the dashboard")
+        expected = {}
+        for name in hidden:
+            case = name[len("ch01.hidden."):]
+            expected[name] = sum(any(fnmatch.fnmatchcase(case, p) for p in must_fail(bug))
+                                 for bug in self.bugs.values())
+            self.assertEqual(counts[name], expected[name], f"{name}: failed by {counts[name]}, "
+                                                           f"expected {expected[name]}")
+        ranked = [t["failed"] for t in self.data["tests"]]
+        self.assertEqual(ranked, sorted(ranked, reverse=True), "not sorted by failures")
+        self.assertEqual(self.data["tests"][0]["failed"], max(expected.values()), "the top concept")
+        tmin_only = [t for t in self.data["tests"] if t["test"].startswith("ch01.hidden.") and t["failed"] == 3]
+        self.assertTrue(tmin_only and all(set(t["submissions"]) == {"tmin-a", "tmin-b", "tmin-c"} for t in tmin_only
+                                          if any(fnmatch.fnmatchcase(t["test"][12:], p)
+                                                 for p in must_fail("ignores-tmin"))), tmin_only)
+        for t in self.data["tests"]:
+            self.assertFalse({"solution", "solution-renamed", "independent"} & set(t["submissions"]),
+                             f"a correct submission failed {t['test']}")
+
+    def test_the_broken_one_is_listed_with_its_error(self):
+        broken = self.data["did_not_build"]
+        self.assertEqual([b["submission"] for b in broken], ["broken"])
+        self.assertRegex(broken[0]["error"], r"unit_sphere\.cpp:\d+:\d+: error: expected .;.")
+
+    def test_grading_time_of_each(self):
+        times = {t["submission"]: t["seconds"] for t in self.data["grading_seconds"]}
+        self.assertEqual(set(times), set(self.files))
+        self.assertTrue(all(s > 0 for s in times.values()), times)
+
+    def test_copies_listed_and_independent_answers_not(self):
+        if not shutil.which("sim_c++"):
+            self.skipTest("sim_c++ is not installed (optional package similarity-tester): no similar pairs looked for")
+        pairs = {(p["a"], p["b"]) for p in self.data["similar_pairs"]}
+        for a, b in (("solution", "solution-renamed"), ("tmin-a", "tmin-b"), ("tmin-b", "tmin-c"),
+                     ("closed-a", "closed-b")):
+            self.assertIn((a, b), pairs, f"the copies {a} and {b} are not listed")
+        self.assertFalse([p for p in pairs if "independent" in p], f"an independent answer listed: {pairs}")
+        independent = [g for g in self.data["similar_groups"] if "independent" in g]
+        self.assertEqual(independent, [], "the independent answer is in a group")
+        for p in self.data["similar_pairs"]:
+            self.assertTrue(p["runs"], f"{p['a']} and {p['b']}: no matching lines to show")
+        with open(os.path.join(self.out, "dashboard.html")) as f:
+            page = f.read()
+        self.assertIn("solution and solution-renamed: ch01/unit_sphere.cpp", page)
+        self.assertIn("const T disc = hb * hb - a * c;", page, "the copy's matching lines are not shown")
+
+
 class Browser(ToolTest):
     """report.html (and dashboard.html, when Dashboard made one) as a person sees them in Chromium."""
 
@@ -255,7 +414,9 @@ class Browser(ToolTest):
     def check_page(self, page, sections):
         seen = look_at(page, config.work)
         self.assertEqual(seen["sections"], sections, "the chapters' sections")
-        self.assertTrue(seen["images"], "no image on the page")
+        self.assertTrue(seen["images"] or seen["drawings"], "no image on the page")
+        for size in seen["drawings"]:
+            self.assertTrue(min(size) > 0, f"a drawing shown with no size: {size}")
         for img in seen["images"]:
             with self.subTest(image=img["alt"]):
                 self.assertTrue(img["complete"] and min(img["natural"]) > 0, f"did not decode: {img}")
@@ -309,8 +470,20 @@ class Browser(ToolTest):
         self.assertTrue(seen["loads"] or seen["refused"], f"an outside image went unnoticed: {seen}")
 
 
+
+class DashboardBrowser(Browser):
+    """dashboard.html of the class Dashboard graded, as the instructor sees it in Chromium."""
+
+    def test_dashboard_page(self):
+        page = os.path.join(config.work, "class-out", "dashboard.html")
+        self.assertTrue(os.path.isfile(page), f"{page} is missing: grader.dashboard makes it")
+        seen = self.check_page(page, ["scores", "tests", "did-not-build", "times", "similar"])
+        self.assertEqual(len(seen["drawings"]), 1, "one histogram (chapter 01)")
+        screenshot(page, os.path.join(config.work, "dashboard.png"), config.work)
+
+
 if __name__ == "__main__":
-    if "Browser" in sys.argv and not chromium():
+    if any(a.endswith("Browser") for a in sys.argv) and not chromium():
         print("SKIPPED: chromium is not installed (optional; tools/setup installs it): "
               "the pages were not looked at in a browser")
         sys.exit(77)      # ctest's SKIP_RETURN_CODE

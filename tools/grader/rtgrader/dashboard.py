@@ -243,7 +243,7 @@ def build(summary, pairs, sources, title="Class dashboard"):
     out = [f"<h1>{e(title)}</h1>", f'<p>{summary["submissions"]} submissions graded. '
            '<span class="note">The same data: dashboard.json, failures.csv, similarity.csv, scores.csv.</span></p>']
     out.append('<section id="scores"><h2>Scores per chapter</h2><table><tr><th>chapter</th><th>distribution '
-               '(% of the chapter\'s points)</th><th>median</th><th>mean</th><th>full marks</th></tr>')
+               '(submissions by % of the chapter\'s points: 0-9, 10-19, ..., 90-100)</th><th>median</th><th>mean</th><th>full marks</th></tr>')
     for cid, rows in summary["chapters"].items():
         if not rows:
             continue
@@ -291,6 +291,9 @@ def build(summary, pairs, sources, title="Class dashboard"):
                    "</p>")
         if not pairs:
             out.append("<p>No pair above the threshold.</p>")
+        else:
+            out.append("<p>Groups (each member similar to at least one other): " + "; ".join(
+                "{" + ", ".join(e(x) for x in g) + "}" for g in groups(pairs)) + "</p>")
         for p in pairs:
             a_text = sources[p["a"]][p["file"]].decode("utf-8", errors="replace")
             b_text = sources[p["b"]][p["file"]].decode("utf-8", errors="replace")
@@ -307,6 +310,22 @@ def build(summary, pairs, sources, title="Class dashboard"):
             "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; img-src data:; "
             "style-src 'unsafe-inline'\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
             f"<title>{e(title)}</title><style>{STYLE}</style></head><body>\n" + "\n".join(out) + "\n</body></html>\n")
+
+
+def groups(pairs):
+    """The similar pairs joined into groups (connected components), largest first: [[submission, ...]]."""
+    parent = {}
+
+    def root(x):
+        while parent.setdefault(x, x) != x:
+            x = parent[x]
+        return x
+    for p in pairs or []:
+        parent[root(p["a"])] = root(p["b"])
+    found = {}
+    for x in list(parent):
+        found.setdefault(root(x), []).append(x)
+    return sorted((sorted(g) for g in found.values()), key=lambda g: (-len(g), g))
 
 
 def _csv(rows, header):
@@ -326,7 +345,8 @@ def write(out_dir, graded, seconds, sources, given, chapter_ids):
         pairs, summary["similarity_error"] = None, str(err)
     mode = 0o600 if os.geteuid() == 0 else 0o644
     fsutil.write_atomic(os.path.join(out_dir, "dashboard.json"),
-                        (json.dumps({**summary, "similar_pairs": pairs}, indent=1) + "\n").encode(), mode)
+                        (json.dumps({**summary, "similar_pairs": pairs, "similar_groups": groups(pairs)},
+                                    indent=1) + "\n").encode(), mode)
     fsutil.write_atomic(os.path.join(out_dir, "failures.csv"), _csv(
         [[t["test"], t["chapter"], t["kind"], t["failed"], t["graded"], t["messages"][0][0] if t["messages"] else "",
           " ".join(t["submissions"])] for t in summary["tests"]],
