@@ -29,7 +29,7 @@ import subprocess
 import sys
 import time
 
-from tooltest import REPO, ToolTest, compiler_cache, config, main
+from tooltest import REPO, ToolTest, compiler_cache, config, main, total_score
 
 sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.join(REPO, "tools", "export"))
@@ -130,6 +130,66 @@ class KitFiles(KitTest):
             self.assertTrue(any(rel in p for p in problems), f"the ship check misses {rel}: {problems}")
 
 
+class KitFullMarks(ToolTest):
+    """A kit whose exercise files are all correct scores full marks in its own preview (issue 19): a kit
+    exported afresh, the solutions' exercise files copied into its chapters, then the preview exactly as
+    the kit's README says, once for every chapter together (which prepares the kit's grading tree) and
+    then for each chapter alone (the same tree, reused). Chapter 06's and 08's tests call earlier
+    chapters (02's sphere, 05's triangle), which in a kit come from the student's own files."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.kit = os.path.join(config.work, "kit-correct")
+        shutil.rmtree(cls.kit, ignore_errors=True)
+        cls.export = run([sys.executable, os.path.join(REPO, "tools", "export", "kit"), cls.kit])
+        cls.previews = {}
+        if cls.export.returncode != 0:
+            return
+        for folder in sorted(glob.glob(os.path.join(REPO, "solutions", "[0-9][0-9]-*"))):
+            for exercise in glob.glob(os.path.join(folder, "*.cpp")):
+                shutil.copy(exercise, os.path.join(cls.kit, "chapters", os.path.basename(folder)))
+        with open(os.path.join(cls.kit, "tests", "manifest.json")) as f:
+            cls.manifest = json.load(f)["tests"]
+        cls.chapters = sorted(os.path.basename(c)[:2] for c in glob.glob(os.path.join(cls.kit, "chapters", "[0-9][0-9]-*")))
+        env = dict(os.environ, **compiler_cache(cls.kit))
+        env.pop("RT_GRADER_ISOLATION", None)
+        for chapters in [None] + cls.chapters:
+            cmd = ["tools/grader/grade", ".", "--out", "preview.json"] + (["--chapters", chapters] if chapters else [])
+            started = time.monotonic()
+            result = run(cmd, cwd=cls.kit, env=env, timeout=1500 if chapters is None else 600)
+            data = None
+            if os.path.isfile(os.path.join(cls.kit, "preview.json")):
+                with open(os.path.join(cls.kit, "preview.json")) as f:
+                    data = json.load(f)
+                os.remove(os.path.join(cls.kit, "preview.json"))
+            print(f"{' '.join(cmd)}: {time.monotonic() - started:.1f} s")
+            cls.previews[chapters] = result, data
+
+    def setUp(self):
+        self.assertEqual(self.export.returncode, 0, "tools/export/kit failed")
+
+    def check(self, chapters):
+        result, data = self.previews[chapters]
+        where = "the preview" + (f" --chapters {chapters}" if chapters else "")
+        self.assertEqual(result.returncode, 0, f"{where} failed:\n{result.stderr[-2000:]}")
+        self.assertIsNotNone(data, f"{where} wrote no preview.json")
+        wanted = sorted(n for n in self.manifest if chapters is None or n.startswith(f"ch{chapters}."))
+        self.assertTrue(wanted, f"the kit's manifest has no test of {where}")
+        self.assertEqual(sorted(t["name"] for t in data["tests"]), wanted, f"{where}: not every test was graded")
+        failed = [f"{t['name']}: {t['output'][:300]}" for t in data["tests"] if t["status"] != "passed"]
+        self.assertEqual(failed, [], f"{where}: correct exercise files lost points")
+        total = sum(self.manifest[n]["points"] for n in wanted)
+        self.assertEqual(data.get("score"), total, f"{where}: {data.get('score')} of {total}")
+
+    def test_every_chapter_together_scores_full_marks(self):
+        self.check(None)
+
+    def test_each_chapter_alone_scores_full_marks(self):
+        for chapter in self.chapters:
+            with self.subTest(chapter=chapter):
+                self.check(chapter)
+
+
 class KitBuilt(KitTest):
     """The kit's READMEs' commands, run in the kit in order; then the whole kit built, and nothing in it
     computing an answer. One build of the kit (build/student) serves every check: the READMEs'
@@ -178,7 +238,7 @@ class KitBuilt(KitTest):
         self.assertTrue(os.path.isfile(path), f"{where} wrote no {path}")
         with open(path) as f:
             data = json.load(f)
-        self.assertEqual(data["score"], 0, f"{where}: the untouched kit scored points")
+        self.assertEqual(total_score(data), 0, f"{where}: the untouched kit scored points")
         self.assertEqual([t["name"] for t in data["tests"] if ".hidden." in t["name"]], [],
                          f"{where}: the kit graded hidden tests")
 
@@ -423,10 +483,10 @@ class Gradescope(ToolTest):
     def test_the_solutions_score_full_marks(self):
         data = self.graded("solutions")
         total = sum(t["max_score"] for t in data["tests"])
-        self.assertTrue(total > 0 and data["score"] == total, f"the solutions scored {data['score']} of {total}")
+        self.assertTrue(total > 0 and total_score(data) == total, f"the solutions scored {total_score(data)} of {total}")
 
     def test_the_stubs_score_zero(self):
-        self.assertEqual(self.graded("stubs")["score"], 0, "the stubs scored points")
+        self.assertEqual(total_score(self.graded("stubs")), 0, "the stubs scored points")
 
 
 if __name__ == "__main__":

@@ -251,7 +251,22 @@ std::string call_remote(const std::string& function, const std::string& argument
             const message m = ch.receive();
             if (m.what == kind::answer) return m.bytes;
             if (m.what == kind::call_back) {
-                ch.send(kind::call_back_answer, answer_call_back(m.bytes));
+                std::string reply;
+                try {
+                    reply = answer_call_back(m.bytes);
+                } catch (const protocol_error&) {
+                    throw;
+                } catch (...) {
+                    // The callback could not answer (in a student kit it may ask an earlier chapter's
+                    // function, forwarded to the runner, which threw): the runner now waits for an answer
+                    // that never comes, so nobody gets it again. The callback's own exception goes on.
+                    c.broke_in_case = true;
+                    if (c.broken.empty())
+                        c.broken = "the runner was left waiting for a callback's answer during a call to " +
+                                   plain_name(function);
+                    throw;
+                }
+                ch.send(kind::call_back_answer, reply);
                 continue;
             }
             if (m.what != kind::threw) throw protocol_error("a message the judge did not ask for");

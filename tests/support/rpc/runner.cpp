@@ -65,9 +65,21 @@ std::string runner_call_back(std::uint32_t id, const std::string& arguments) {
     put(w, id);
     w.raw(arguments.data(), arguments.size());
     ch.send(kind::call_back, w.bytes());
-    const message m = ch.receive();
-    if (m.what != kind::call_back_answer) throw protocol_error("a message the runner did not expect");
-    return m.bytes;
+    for (;;) {
+        const message m = ch.receive();
+        if (m.what == kind::call_back_answer) return m.bytes;
+        // While the judge answers the callback it may call an exercise function of an earlier chapter:
+        // in a student kit the judge has no solutions, so the test's own helpers (chapter 06's served
+        // occlusion test asks chapter 02's sphere) are forwarded here too. The call is answered first,
+        // as any other, and then the callback's answer comes.
+        if (m.what == kind::same_cpu) {
+            run_on(m.bytes);
+        } else if (m.what == kind::call) {
+            answer(ch, m.bytes);
+        } else {
+            throw protocol_error("a message the runner did not expect");
+        }
+    }
 }
 
 bool serve_erased(const std::string& function, handler h) {

@@ -139,9 +139,10 @@ def grade_main(argv=None):
             results.write(results.failure(message, time.monotonic() - start), out)
             print(message, file=sys.stderr)
             return 2
-        found, notes, _ = grader.grade(args.submission, os.path.dirname(out))
-        # The true total: preparing the tree (when it had to be built) counts too.
-        data = results.gradescope(found, notes, time.monotonic() - start, t.chapters())
+        prepared = time.monotonic() - start
+        found, notes, visible = grader.grade(args.submission, os.path.dirname(out))
+        # Preparing the tree (when it had to be built) counts too; the hidden phase does not (results.py).
+        data = results.gradescope(found, notes, prepared + visible, t.chapters())
         results.write(data, out)
         page = report.write(data, out, t.chapters())
         print(results.summary(data, t.chapters(), out) + f"\nThe page with your pictures: {page}")
@@ -182,7 +183,8 @@ def batch_main(argv=None):
             data = results.failure(f"The grader failed on this submission: {e}")
         results.write(data, out)
         report.write(data, out, t.chapters())
-        print(f"{results.terminal_safe(name)}: {data['score']:g} ({data['execution_time']} s)", file=sys.stderr)
+        print(f"{results.terminal_safe(name)}: {results.total_score(data):g} ({data['execution_time']} s)",
+              file=sys.stderr)
         return name, data
 
     # While they are graded, the submissions are closed to every other user: in the fallback by user
@@ -196,7 +198,7 @@ def batch_main(argv=None):
     w.writerow(["submission", "score", "max_score"] + chapter_ids)
     for name, data in graded:
         per = [sum(x["score"] for x in data["tests"] if x["tags"][0] == c) for c in chapter_ids]
-        w.writerow([name, data["score"], sum(x["max_score"] for x in data["tests"])] + per)
+        w.writerow([name, results.total_score(data), sum(x["max_score"] for x in data["tests"])] + per)
     fsutil.write_atomic(os.path.join(out_dir, "scores.csv"), table.getvalue().encode())
     page = dashboard.for_batch(out_dir, graded, seconds, args.folder, t, chapter_ids)
     print(f"graded {len(graded)} submissions in {time.monotonic() - start:.1f} s -> "

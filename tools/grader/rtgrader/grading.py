@@ -57,9 +57,12 @@ class Options:
     limits: Limits = field(default_factory=Limits)
     render_seconds: float = 60.0
     jobs: int = 2
-    chapter_seconds: float = 240.0    # time budget of a chapter's tests (then the rest are skipped)
-    submission_seconds: float = 480.0  # time budget of a submission's tests and renders (under a Gradescope time-out)
-    max_timeouts: int = 3             # a chapter's remaining tests are skipped after this many timeouts
+    # Time budgets (README, "Time limits"): each case has its own limit (limits.wall_seconds); the cases
+    # of one chapter in one phase share chapter_seconds; the visible phase (public tests and pictures of
+    # every chapter) ends by visible_seconds after the start, the hidden phase by submission_seconds.
+    chapter_seconds: float = 120.0
+    visible_seconds: float = 240.0
+    submission_seconds: float = 480.0
 
 
 @dataclass
@@ -200,11 +203,15 @@ class Grader:
         with sandbox.worker_slot(sandbox.slots_folder(self.tree.folder)) as slot:
             user = sandbox.sandbox_user(slot) if sandbox.is_root() else None
             try:
+                self._per.visible_seconds = None
                 results, notes = self._grade_in(submission, out_dir, work, user, slot)
             finally:
                 shutil.rmtree(work, ignore_errors=True)
-        elapsed = time.monotonic() - start
-        return results, notes, elapsed
+        # What the student may see of the time: the visible phase's (the hidden phase's time could
+        # carry what the code did with hidden inputs), counted from this grading's start.
+        visible = self._per.visible_seconds
+        total = time.monotonic() - start
+        return results, notes, total if visible is None else min(total, visible + (self._per.start - start))
 
     def _grade_in(self, submission, out_dir, work, user, slot):
         chapters = self.tree.chapters()
@@ -215,7 +222,8 @@ class Grader:
         self.log("grader: " + self.iso.describe())
         notes += self.iso.notes
         self._per.work = work
-        self._per.deadline = time.monotonic() + self.options.submission_seconds
+        self._per.start = time.monotonic()
+        self._per.deadline = self._per.start + self.options.submission_seconds
         if user is None and self.iso.mode == isolation.NAMESPACES:
             notes.append("not root: the submission's code runs as the grader's own user, inside a user namespace "
                          "of unprivileged bubblewrap (it sees only its own files)")
@@ -225,10 +233,13 @@ class Grader:
         if not os.path.isdir(submission):
             notes.append(f"the submission folder {submission} does not exist")
 
-        # 1. Find and compile the exercise files, chapter by chapter.
+        # 1. Find and compile the exercise files, chapter by chapter. In a student kit the earlier
+        # chapters a graded chapter builds on come from the student's own files too (there are no
+        # solutions to take them from): they are compiled, not graded.
         problems = {}     # chapter id -> message (missing file, compile or link error)
         sources = {}
-        for cid in self.chapter_ids:
+        needed = self._with_dependencies(chapters)
+        for cid in needed:
             ch = chapters[cid]
             sources[cid] = {}
             for ex in ch["exercises"]:
@@ -237,8 +248,8 @@ class Grader:
                     problems[cid] = why or f"the file {ex} is missing (no submission folder)"
                     break
                 sources[cid][ex] = path
-        suspicious = self._scan(sources)
-        to_compile = [cid for cid in self.chapter_ids if cid not in problems]
+        suspicious = self._scan({cid: files for cid, files in sources.items() if cid in self.chapter_ids})
+        to_compile = [cid for cid in needed if cid not in problems]
         lanes = max(1, self.options.jobs)
         free_lanes = queue.Queue()
         for lane in range(lanes):
@@ -285,9 +296,37 @@ class Grader:
 
         self._per.times["link"] = time.monotonic() - phase
 
-        # 3. Run the tests and the render of every chapter that built.
+        # 3. Phase 1, visible: every public test and every graded picture of every chapter, before any
+        # hidden input reaches the student's code. Phase 2: the hidden tests, last. Nothing the student's
+        # code produces in phase 2 is shown before publication (README, "Visible before hidden"): the
+        # machine's page cache, or anything else two runs share, could carry a hidden input from the
+        # runner of phase 2 into a program or a public test of phase 1 only if phase 1 came later.
+        by_chapter = {cid: {} for cid in self.chapter_ids}
+        probes = {}
+        visible_end = self._per.start + self.options.visible_seconds
+        for cid in ready:
+            ch = chapters[cid]
+            folder = os.path.join(work, cid)
+            probes[cid] = self._probe(self._runner_path(folder, cid), logs, user) if self._cases(cid) else ""
+            by_chapter[cid].update(self._run_phase(ch, "public", folder, logs, user, probes[cid], visible_end))
+            by_chapter[cid].update(self._picture(ch, folder, logs, out_dir, user))
+        self._per.visible_seconds = time.monotonic() - self._per.start
+        for cid in ready:
+            folder = os.path.join(work, cid)
+            by_chapter[cid].update(self._run_phase(chapters[cid], "hidden", folder, logs, user, probes[cid],
+                                                   self._per.deadline))
+
+        # 4. The results, chapter by chapter in the manifest's order. A chapter that did not build has
+        # its compilation entry; so has an earlier chapter it builds on (in a kit), and every failed
+        # test of a chapter that builds on one that did not build names it.
         results = []
+        shown = set()
         for cid in self.chapter_ids:
+            broken_below = [d for d in self._dependencies(chapters, cid) if d in problems]
+            for d in broken_below:
+                if d not in self.chapter_ids and d not in shown:
+                    results.append(self._compilation_entry(d, problems[d]))
+                    shown.add(d)
             if cid in problems:
                 results.append(self._compilation_entry(cid, problems[cid]))
                 for name, kind, _, _ in self._names_of(cid):
@@ -295,13 +334,48 @@ class Grader:
                                                 f"not graded: chapter {chapters[cid]['number']} did not build "
                                                 f"(see '{cid} compilation')"))
                 continue
-            results += self._run_chapter(chapters[cid], os.path.join(work, cid), logs, out_dir, user)
+            why = self._broken_dependencies_note(chapters, broken_below, problems)
+            for name, kind, _, _ in self._names_of(cid):
+                r = by_chapter[cid].get(name) or self._result(name, kind, cid, False,
+                                                              "not run: the grader stopped before this test")
+                if why and not r.passed:
+                    r.output = why + "\n" + r.output
+                results.append(r)
         # Where the time went, for the instructor (tools/grader/README.md, "Measured").
         self.log(f"grader: {sandbox.counts['runs']} sandboxed processes, {judge.counts['judges']} judge processes; "
-                 + ", ".join(f"{k} {v:.1f} s" for k, v in self._per.times.items()))
+                 + ", ".join(f"{k} {v:.1f} s" for k, v in self._per.times.items())
+                 + f"; visible phase {self._per.visible_seconds:.1f} s")
         if suspicious:   # for the instructor's eyes only: never in results.json, which the student sees
             self.log("grader: instructor note: words to look at in the submission: " + "; ".join(suspicious))
         return results, notes
+
+    def _dependencies(self, chapters, cid):
+        """The chapters (ids) whose exercise code chapter cid's runner and program link from the
+        submission: its earlier chapters in a kit, none when the tree has the solutions."""
+        if self.tree.has_solutions:
+            return []
+        return [f"ch{d}" for d in chapters[cid].get("depends", []) if f"ch{d}" in chapters]
+
+    def _with_dependencies(self, chapters):
+        """The chapters whose exercise files this grading compiles, in chapter order."""
+        wanted = set(self.chapter_ids)
+        for cid in self.chapter_ids:
+            wanted.update(self._dependencies(chapters, cid))
+        return [cid for cid in chapters if cid in wanted]
+
+    @staticmethod
+    def _broken_dependencies_note(chapters, broken, problems):
+        """The line every failed test of a chapter starts with when an earlier chapter it builds on did
+        not build: names that chapter and its compiler's first error."""
+        if not broken:
+            return ""
+        told = []
+        for d in broken:
+            first = first_error_line(problems[d])
+            told.append(f"chapter {chapters[d]['number']} ({chapters[d]['title']}) did not build"
+                        + (f" ({first})" if first else "") + f", see '{d} compilation'")
+        return ("This chapter builds on " + "; ".join(told) + ": whatever calls its functions fails here "
+                "(they throw \"... is missing\"). Fix that chapter first.")
 
     def _names_of(self, cid):
         return [n for n in self.names if n[2] == cid]
@@ -378,43 +452,56 @@ class Grader:
                 os.chmod(dst, 0o755)
 
     # --- running ------------------------------------------------------------------------
-    def _run_chapter(self, ch, folder, logs, out_dir, user):
-        results = []
-        budget = _ChapterBudget(self.options, self._per.deadline)
-        runner = os.path.join(os.path.dirname(folder), "bin", ch["id"], "runner")
-        cases = [n for n in self._names_of(ch["id"]) if n[1] in ("public", "hidden")]
+    def _cases(self, cid, kind=None):
+        return [n for n in self._names_of(cid) if n[1] in ((kind,) if kind else ("public", "hidden"))]
+
+    @staticmethod
+    def _runner_path(folder, cid):
+        return os.path.join(os.path.dirname(folder), "bin", cid, "runner")
+
+    def _run_phase(self, ch, kind, folder, logs, user, probe, phase_end):
+        """One judge's cases of a chapter (kind: public or hidden) against a runner of the student's code
+        (one for the phase, replaced only when it broke); returns {name: TestResult}."""
+        cases = self._cases(ch["id"], kind)
+        if not cases:
+            return {}
         started = time.monotonic()
-        probe = self._probe(runner, logs, user) if cases else ""
+        budget = _Budget(self.options, phase_end)
         outcomes = {}
-        if cases and not probe:
+        if not probe:
+            runner = self._runner_path(folder, ch["id"])
             host = judge.RunnerHost(self._runner_starter(runner, logs, user, budget))
             try:
-                for kind in ("public", "hidden"):
-                    wanted = [case for _, k, _, case in cases if k == kind]
-                    if wanted and not budget.reason():
-                        found = judge.run_cases(ch[f"{kind}_judge"], wanted, host, self.options.limits,
-                                                self._per.work, os.path.join(logs, f"{ch['id']}-{kind}-judge"),
-                                                budget)
-                        outcomes.update({(kind, c): o for c, o in found.items()})
+                outcomes = judge.run_cases(ch[f"{kind}_judge"], [case for *_, case in cases], host,
+                                           self.options.limits, self._per.work,
+                                           os.path.join(logs, f"{ch['id']}-{kind}-judge"), budget)
             finally:
                 host.close()
+        found = {}
+        for name, kind_, cid, case in cases:
+            outcome = outcomes.get(case)
+            if probe or outcome is None:
+                found[name] = self._result(name, kind_, cid, False, probe or budget.why_not_run(case) or
+                                           "not run: the judge stopped before this test")
+            else:
+                found[name] = self._result(name, kind_, cid, outcome.passed, self._feedback(outcome, kind_))
         self._per.times["tests"] += time.monotonic() - started
+        return found
+
+    def _picture(self, ch, folder, logs, out_dir, user):
+        """The chapter's graded picture, a step of the visible phase: {name: TestResult} (none when the
+        chapter has no picture or the manifest grades none)."""
+        if not (ch.get("reference") and any(n[1] == "render" for n in self._names_of(ch["id"]))):
+            return {}
         started = time.monotonic()
-        for name, kind, cid, case in cases:
-            found = outcomes.get((kind, case))
-            if probe or found is None:
-                results.append(self._result(name, kind, cid, False, probe or budget.reason() or
-                                            "not run: the judge stopped before this test"))
-                continue
-            results.append(self._result(name, kind, cid, found.passed, self._feedback(found, kind)))
-        if ch.get("reference") and any(n[1] == "render" for n in self._names_of(ch["id"])):
-            late = time.monotonic() > self._per.deadline
-            passed, output = (False, f"not run: the submission's tests used their time budget "
-                                     f"({self.options.submission_seconds:g} s)") if late else \
-                self._render(ch, folder, logs, out_dir, user)
-            results.append(self._result(f"{ch['id']}.render", "render", ch["id"], passed, output))
+        name = f"{ch['id']}.render"
+        if time.monotonic() > self._per.deadline:
+            passed, output = False, (f"not run: the submission's tests used their time budget "
+                                     f"({self.options.submission_seconds:g} s)")
+        else:
+            passed, output = self._render(ch, folder, logs, out_dir, user)
         self._per.times["renders"] += time.monotonic() - started
-        return results
+        return {name: self._result(name, "render", ch["id"], passed, output)}
 
     def _run_runner(self, argv, log_path, user, work, env_extra=None, pass_fds=(), limits=None, stopper=None):
         """Runs the student's runner in the sandbox (it reads only itself, writes only a private /tmp).
@@ -554,29 +641,62 @@ class Grader:
         return TestResult(f"{cid} compilation", "compilation", cid, False, message, 0, "visible")
 
 
-class _ChapterBudget:
-    """A chapter's time budget, the submission's, and the chapter's timeouts (judge.run_cases counts them)."""
+class _Budget:
+    """The time of one chapter's cases in one phase. Every case has its own limit (the judge kills the
+    runner at it); together they may take chapter_seconds, and none starts after the phase's end. A case
+    that went past its limit marks its concept (the test's name without the scalar type, "...<float>"
+    and "...<double>" are one concept): the concept's other cases are skipped, so a correct answer that
+    is slow on one idea loses that idea's tests, and the time of one limit for it, nothing else."""
 
-    def __init__(self, options, submission_deadline):
+    def __init__(self, options, phase_end):
         self.options = options
-        self.chapter_end = time.monotonic() + options.chapter_seconds
-        self.submission_end = submission_deadline
+        self.chapter_end = min(time.monotonic() + options.chapter_seconds, phase_end)
+        self.phase_end = phase_end
         self.timeouts = 0
+        self.slow = {}      # concept -> the case that went past its limit
 
     def seconds_left(self):
-        return min(self.chapter_end, self.submission_end) - time.monotonic()
+        return self.chapter_end - time.monotonic()
+
+    def timed_out(self, case):
+        self.timeouts += 1
+        self.slow.setdefault(concept_of(case), case)
+
+    def skipped(self, case):
+        """'' when the case may run, else why it is skipped (its concept went past its limit)."""
+        first = self.slow.get(concept_of(case))
+        if first is None or first == case:
+            return ""
+        return (f"not run: '{first}' tests the same idea and did not finish in time, so this one was skipped "
+                "(each idea that is too slow costs its own tests only)")
 
     def reason(self):
-        """'' while the chapter may start more tests, else why its remaining tests are skipped."""
+        """'' while the chapter may start more cases, else why its remaining cases are not run."""
         now = time.monotonic()
-        if self.timeouts >= self.options.max_timeouts:
-            return (f"not run: {self.timeouts} tests of this chapter did not finish in time, so its remaining "
-                    "tests were skipped (does your code hang, or wait at exit?)")
+        if now > self.phase_end:
+            return f"not run: the submission's tests used their time budget ({self.options.submission_seconds:g} s)"
         if now > self.chapter_end:
             return f"not run: this chapter's tests used their time budget ({self.options.chapter_seconds:g} s)"
-        if now > self.submission_end:
-            return f"not run: the submission's tests used their time budget ({self.options.submission_seconds:g} s)"
         return ""
+
+    def why_not_run(self, case):
+        return self.skipped(case) or self.reason()
+
+
+_TYPE_SUFFIX = re.compile(r"<[^<>]*>$")
+
+
+def concept_of(case):
+    """A test case's idea: its name without doctest's template argument ("...<float>")."""
+    return _TYPE_SUFFIX.sub("", case)
+
+
+def first_error_line(message):
+    """The compiler's first error line in a compilation message ('' when there is none)."""
+    for line in message.splitlines():
+        if re.search(r"\berror\b", line):
+            return line.strip()
+    return ""
 
 
 _NOISE = re.compile(r"^(\[doctest\] .*|={20,})$\n?", re.M)

@@ -160,19 +160,19 @@ class _Frames:
 
 def run_cases(judge, cases, host, limits, cwd, log_path, budget):
     """Runs `cases` (names) of `judge` against host's runner; returns {name: CaseOutcome}.
-    budget.reason() says why no further case may start ('' while they may); every case
-    that went past its time limit adds one to budget.timeouts. Cases not run are missing
-    from the result (the caller says why)."""
+    budget.reason() says why no further case may start ('' while they may), budget.skipped(case)
+    why that case is not started (another case of its concept went past its time limit, which
+    budget.timed_out(case) is told). Cases not run are missing from the result (the caller says
+    why). A judge that reaches a skipped case is ended and a new one runs the cases left."""
     results = {}
-    remaining = list(cases)
+    remaining = [c for c in cases if not budget.skipped(c)]
     while remaining and not budget.reason():
         ran = _one_judge(judge, remaining, host, limits, cwd, log_path, budget, results)
-        left = [c for c in remaining if c not in results]
-        if not ran or len(left) == len(remaining):
+        left = [c for c in remaining if c not in results and not budget.skipped(c)]
+        if not ran or (len(left) == len(remaining) and not budget.reason()):
             for c in left:   # the judge ended without starting them: nothing more to learn by starting it again
-                if not budget.reason():
-                    results[c] = CaseOutcome(False, "Grader problem: the judge did not run this test "
-                                                    "(tell your instructor).", "", None)
+                results[c] = CaseOutcome(False, "Grader problem: the judge did not run this test "
+                                                "(tell your instructor).", "", None)
             break
         remaining = left
     return results
@@ -217,7 +217,7 @@ def _one_judge(judge, cases, host, limits, cwd, log_path, budget, results):
             what, data = frame
             if what == "B":
                 name = data[1:].decode("utf-8", errors="replace")
-                if budget.reason():
+                if budget.reason() or budget.skipped(name):
                     break
                 runner = host.runner
                 if data[:1] == b"1" or runner is None or runner.ended() or runner.stopper.stopped:
@@ -250,7 +250,7 @@ def _one_judge(judge, cases, host, limits, cwd, log_path, budget, results):
         # be in the middle of an answer, is not given to anyone else.
         current["runner"].stopper.stop()
         if current["timed_out"]:
-            budget.timeouts += 1
+            budget.timed_out(current["name"])
         if current["name"] in wanted and current["name"] not in results:
             results[current["name"]] = CaseOutcome(
                 False, "The test did not finish in time." if current["timed_out"] else
@@ -266,7 +266,7 @@ def _record(results, wanted, current, data, limits, budget):
     text = report.decode("utf-8", errors="replace")
     timed_out = current["timed_out"]
     if timed_out:
-        budget.timeouts += 1
+        budget.timed_out(current["name"])
     fit = False
     if len(fields) != 4 or not all(f.isdigit() for f in fields):
         outcome = CaseOutcome(False, "Grader problem: the judge gave no verdict; tell your instructor.", text, None)

@@ -27,21 +27,44 @@ def gradescope(results, notes, elapsed, chapters):
             "tags": [r.chapter, r.kind],
             "visibility": r.visibility,
         })
-    score = sum(t["score"] for t in tests)
-    total = sum(t["max_score"] for t in tests)
-    lines = [f"Score {score:g} / {total:g}."] + [f"Note: {n}" for n in notes]
-    return {
-        "score": score,
-        "execution_time": int(round(elapsed)),
-        "output": "\n".join(lines),
+    # Before publication a student sees the visible tests only, so everything at the top counts only
+    # them. Gradescope takes a top-level "score" as the total, shown to the student at once: it is
+    # written only when every test is visible (a preview); otherwise Gradescope adds the tests' scores
+    # itself and, while some are hidden, does not show the student the total (README, "Gradescope").
+    visible = [t for t in tests if t["visibility"] == "visible"]
+    score = sum(t["score"] for t in visible)
+    total = sum(t["max_score"] for t in visible)
+    withheld = len(tests) - len(visible)
+    head = f"Score {score:g} / {total:g}" + (f" on the tests shown now; {withheld} more tests are shown when "
+                                             "grades are published." if withheld else ".")
+    data = {
+        "execution_time": shown_seconds(elapsed),
+        "output": "\n".join([head] + [f"Note: {n}" for n in notes]),
         "stdout_visibility": "hidden",
         "tests": tests,
     }
+    if not withheld:
+        data = {"score": score, **data}
+    return data
+
+
+SECONDS_STEP = 5
+
+
+def shown_seconds(elapsed):
+    """execution_time as results.json gives it: the visible phase's time (the caller's), rounded up to
+    SECONDS_STEP seconds."""
+    return int(-(-max(0.0, elapsed) // SECONDS_STEP) * SECONDS_STEP)
+
+
+def total_score(data):
+    """The points of every test (hidden ones too): what Gradescope counts once grades are published."""
+    return sum(t["score"] for t in data["tests"])
 
 
 def failure(message, elapsed=0.0):
     """The results file when grading could not even start."""
-    return {"score": 0, "execution_time": int(round(elapsed)), "output": message,
+    return {"score": 0, "execution_time": shown_seconds(elapsed), "output": message,
             "stdout_visibility": "hidden",
             "tests": [{"name": "grader", "number": "0.1", "score": 0, "max_score": 0, "status": "failed",
                        "output": message, "tags": ["grader"], "visibility": "visible"}]}
@@ -66,7 +89,7 @@ def summary(data, chapters, path=None):
         title = chapters.get(cid, {}).get("title", "")
         score = sum(t["score"] for t in tests)
         total = sum(t["max_score"] for t in tests)
-        parts = []
+        parts = []     # the instructor's terminal, or the student's own preview (no hidden tests): all of it
         for kind in ("public", "hidden", "render"):
             mine = [t for t in tests if t["tags"][1] == kind]
             if mine:
@@ -77,11 +100,18 @@ def summary(data, chapters, path=None):
         failed = [t for t in tests if t["status"] != "passed" and (compiled or t["tags"][1] == "compilation")]
         for t in failed[:8]:
             headline, explanation = _why(t["output"])
+            if t["tags"][1] == "compilation":
+                # The compiler's first error, which _why would drop as one of doctest's location lines.
+                first = next((line.strip() for line in t["output"].splitlines()
+                              if re.search(r"\berror\b", line)), "")
+                explanation = [first] if first and first != headline else explanation[:1]
             out.append(f"    failed: {t['name']}: {headline[:150]}")
             out += [f"        {line[:200]}" for line in explanation]
         if len(failed) > 8:
             out.append(f"    ... and {len(failed) - 8} more failed (see the results file)")
     out.append(data["output"])
+    if "score" not in data:     # for the instructor: what Gradescope will count once grades are published
+        out.append(f"With the hidden tests: {total_score(data):g} / {sum(t['max_score'] for t in data['tests']):g}.")
     out.append(f"({data['execution_time']} s)" + (f" -> {path}" if path else ""))
     return terminal_safe("\n".join(out))
 

@@ -154,6 +154,7 @@ class Tree:
             if changed == 0 and old is not None:
                 if wanted is None:
                     wanted = [ch["number"] for ch in old["chapters"].values()]
+                wanted = self._with_dependencies(wanted, old["chapters"])
                 if set(wanted) <= set(old["built"]):
                     self.state = old
                     return
@@ -166,6 +167,7 @@ class Tree:
             numbers = [ch["number"] for ch in chapters.values()]
             if wanted is None:
                 wanted = numbers
+            wanted = self._with_dependencies(wanted, chapters)
             unknown = sorted(set(wanted) - set(numbers))
             if unknown:
                 raise SystemExit(f"grader: no chapter {', '.join(unknown)} in {self.repo}")
@@ -189,6 +191,17 @@ class Tree:
                 json.dump(self.state, f, indent=1)
             if sandbox.is_root():
                 protect(self.folder)
+
+    def _with_dependencies(self, wanted, chapters):
+        """In a kit, the chapters wanted and the earlier chapters they build on: those are linked from
+        the student's own files (grading.py), so they are built too. With solutions, as wanted."""
+        if not self.is_kit:
+            return list(wanted)
+        found = set(wanted)
+        for ch in chapters.values():
+            if ch["number"] in wanted:
+                found.update(d for d in ch.get("depends", []))
+        return sorted(found)
 
     @property
     def is_kit(self):
