@@ -32,7 +32,10 @@ from contextlib import contextmanager
 
 from . import fsutil, sandbox
 
-SKIP_AT_TOP = {".git", "out"}
+SKIP_AT_TOP = {".git", "out", "renders"}
+# What a preview writes at a kit's top (README's `--out preview.json`, its report and renders/): not part
+# of the course, and copying it would make every preview prepare the tree again.
+SKIP_FILES_AT_TOP = {"preview.json", "report.html", "results.json"}
 PRIVATE_DIRS = ("solutions", "tests/hidden", "tests/fixtures")
 
 
@@ -50,7 +53,8 @@ def locked(folder):
 
 def _skipped(rel):
     top = rel.split(os.sep, 1)[0]
-    return top in SKIP_AT_TOP or top.startswith("build") or "__pycache__" in rel.split(os.sep)
+    return (top in SKIP_AT_TOP or top.startswith("build") or "__pycache__" in rel.split(os.sep)
+            or rel in SKIP_FILES_AT_TOP)
 
 
 def sync_source(repo, dest, grading_folder=None, keep=()):
