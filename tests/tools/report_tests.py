@@ -244,6 +244,23 @@ class ReportPage(ToolTest):
         self.assertEqual(len(re.findall(r'src="data:image/png', page)), 5, "only chapter 03's picture is shown")
         self.assertNotIn('id="picture-ch01"', page)
 
+    def test_gradescope_output_is_a_table_per_chapter(self):
+        """results.json's top-level output in Markdown: each chapter's visible tests as a table; no hidden test."""
+        from rtgrader import results
+        path = os.path.join(config.work, "formatted", "results.json")
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        results.write(self.data, path)
+        with open(path) as f:
+            written = json.load(f)
+        self.assertEqual((written["output_format"], written["test_output_format"]), ("md", "text"))
+        self.assertEqual(written["tests"], self.data["tests"], "the tests themselves are written as given")
+        out = written["output"]
+        self.assertTrue(out.startswith("Score 6 / 20."), out[:100])
+        for cid, score in (("ch01", "1 / 6"), ("ch02", "0 / 1"), ("ch03", "5 / 5")):
+            self.assertIn(f"**{cid}: {score}**\n\n| test | result | points |\n|---|---|---:|\n", out)
+        self.assertIn("| ch01.public.inside the sphere | **failed** | 0 / 1 |", out)
+        self.assertNotIn(SECRET, out, "a hidden test in the top-level output, which a student sees at once")
+
     def test_a_broken_input_still_gives_a_page(self):
         os.makedirs(os.path.join(config.work, "broken"), exist_ok=True)
         path = report.write({"tests": [{"name": "x"}]}, os.path.join(config.work, "broken", "results.json"))
@@ -432,7 +449,7 @@ class Browser(ToolTest):
         self.assertEqual(len(seen["images"]), 10)
         self.assertEqual(seen["sliders"], [{"left_at_100": "over", "left_at_0": "under"}] * 2,
                          "the slider does not change which picture shows")
-        shot = screenshot(page, os.path.join(config.work, "report.png"), config.work)
+        shot = screenshot(page, os.path.join(config.work, "report-sample.png"), config.work)
         with open(shot, "rb") as f:
             head = f.read(24)
         self.assertEqual(struct.unpack(">II", head[16:24]), (1280, 800), "screenshot size")
@@ -480,6 +497,14 @@ class DashboardBrowser(Browser):
         seen = self.check_page(page, ["scores", "tests", "did-not-build", "times", "similar"])
         self.assertEqual(len(seen["drawings"]), 1, "one histogram (chapter 01)")
         screenshot(page, os.path.join(config.work, "dashboard.png"), config.work)
+
+    def test_a_students_report_page(self):
+        """The report.html grade-batch wrote for one student of the class (the far root: the picture differs)."""
+        page = os.path.join(config.work, "class-out", "far", "report.html")
+        seen = self.check_page(page, ["ch01"])
+        self.assertEqual(len(seen["images"]), 5, "reference, render, difference and the slider's two")
+        self.assertEqual(seen["sliders"], [{"left_at_100": "over", "left_at_0": "under"}])
+        screenshot(page, os.path.join(config.work, "report.png"), config.work)
 
 
 if __name__ == "__main__":

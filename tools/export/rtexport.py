@@ -38,7 +38,8 @@ KIT_ALLOW = [
 # Never in a kit, even inside an allowed folder.
 KIT_DENY = ["*/__pycache__/*", "*.pyc", "*/.DS_Store",
             "/tests/scenes/scene_plan_test.cpp",    # tests tools/render, which is not in the kit
-            "/tools/grader/README.md"]              # the instructor's manual: the kit's README says how to preview
+            "/tools/grader/README.md",              # the instructor's manual: the kit's README says how to preview
+            "/tools/grader/screenshots/*"]          # its pictures
 PRIVATE = ["solutions", "tests/hidden", "tests/fixtures"]
 
 # What may ship, by kind: every file of a written kit must match one of these

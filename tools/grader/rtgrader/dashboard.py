@@ -243,7 +243,7 @@ def build(summary, pairs, sources, title="Class dashboard"):
     out = [f"<h1>{e(title)}</h1>", f'<p>{summary["submissions"]} submissions graded. '
            '<span class="note">The same data: dashboard.json, failures.csv, similarity.csv, scores.csv.</span></p>']
     out.append('<section id="scores"><h2>Scores per chapter</h2><table><tr><th>chapter</th><th>distribution '
-               '(submissions by % of the chapter\'s points: 0-9, 10-19, ..., 90-100)</th><th>median</th><th>mean</th><th>full marks</th></tr>')
+               '(submissions by % of its points; the last bar: 90-100)</th><th>median</th><th>mean</th><th>full marks</th></tr>')
     for cid, rows in summary["chapters"].items():
         if not rows:
             continue
