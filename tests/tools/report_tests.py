@@ -367,6 +367,8 @@ class Dashboard(ToolTest):
         for name in ("dashboard.html", "dashboard.json", "failures.csv", "similarity.csv", "scores.csv"):
             self.assertTrue(os.path.isfile(os.path.join(self.out, name)), name)
         self.assertIn(os.path.join(self.out, "dashboard.html"), self.batch.stdout, "the summary names the page")
+        for phase in ("public tests and picture", "hidden tests"):      # progress while it grades
+            self.assertEqual(self.batch.stderr.count(f"grader: ch01 {phase} done ("), 9, phase)
 
     def test_failed_concepts_ranked_by_how_many_failed_them(self):
         """Each hidden test is counted once per submission whose mistake fails it (exactly the fixtures'

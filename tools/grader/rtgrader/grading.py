@@ -272,6 +272,7 @@ class Grader:
             return found
 
         phase = time.monotonic()
+        self.log(f"grader: compiling the exercise files of {len(to_compile)} chapters ...")
         with ThreadPoolExecutor(max_workers=lanes) as pool:
             compiled = dict(zip(to_compile, pool.map(compile_one, to_compile)))
         objects = {}
@@ -308,13 +309,18 @@ class Grader:
             ch = chapters[cid]
             folder = os.path.join(work, cid)
             probes[cid] = self._probe(self._runner_path(folder, cid), logs, user) if self._cases(cid) else ""
+            began = time.monotonic()     # progress, one line a chapter and phase (no verdicts: they come at the end)
             by_chapter[cid].update(self._run_phase(ch, "public", folder, logs, user, probes[cid], visible_end))
             by_chapter[cid].update(self._picture(ch, folder, logs, out_dir, user))
+            self.log(f"grader: {cid} public tests and picture done ({time.monotonic() - began:.1f} s)")
         self._per.visible_seconds = time.monotonic() - self._per.start
         for cid in ready:
             folder = os.path.join(work, cid)
+            began = time.monotonic()
             by_chapter[cid].update(self._run_phase(chapters[cid], "hidden", folder, logs, user, probes[cid],
                                                    self._per.deadline))
+            if self._cases(cid, "hidden"):
+                self.log(f"grader: {cid} hidden tests done ({time.monotonic() - began:.1f} s)")
 
         # 4. The results, chapter by chapter in the manifest's order. A chapter that did not build has
         # its compilation entry; so has an earlier chapter it builds on (in a kit), and every failed
