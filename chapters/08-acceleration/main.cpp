@@ -127,5 +127,12 @@ int main(int argc, char** argv) {
     program.title = "acceleration";
     program.draws_scene = true;
     program.render = rt::by_precision(render_scene<float>, render_scene<double>);
-    return rt::run_chapter_program(argc, argv, program);
+    bool help = false;
+    for (int i = 1; i < argc; ++i) help = help || std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0;
+    const int status = rt::run_chapter_program(argc, argv, program);
+    // --level is this program's own option (take_level_option), so the shared help does not list it.
+    if (help)
+        std::printf("  --level INT                 draw the chapter's sphereflake at level N (1 + 9 + ... + 9^N "
+                    "spheres; default %d; not with --scene)\n", default_level);
+    return status;
 }

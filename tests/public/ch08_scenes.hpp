@@ -2,24 +2,30 @@
 // and triangles, their boxes, the brute-force answer the tree must equal, and
 // a checker of the promises every built tree makes (bvh.hpp, struct bvh).
 //
-// Brute force here is chapter 03's rule written out: every object in the
-// order 0, 1, 2, ..., the smallest t in the open range wins, and of equal t
-// the lowest index. The objects are tested with the course's reference
-// sphere and triangle tests (chapters 02 and 05).
+// Brute force is chapter 03's closest_hit, called through its header: every
+// object in the order 0, 1, 2, ..., the smallest t in the open range wins,
+// and of equal t the lowest index. (In your build it is your own chapter 03;
+// the autograder uses the reference one.) The objects are tested with
+// chapter 02's sphere test and chapter 05's triangle test.
 #pragma once
 
 #include "08-acceleration/aabb.hpp"
 #include "08-acceleration/bvh.hpp"
 #include "02-sphere/sphere.hpp"
+#include "03-scene-loop/scene_loop.hpp"
 #include "05-triangle/triangle.hpp"
 
 #include "common/hit_record.hpp"
+#include "memory_bound.hpp"
 #include "rpc/served.hpp"
 
 #include <cstdint>
 #include <cstring>
+#include <memory>
+#include <new>
 #include <optional>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -53,27 +59,68 @@ struct objects {
     // same test. `budget` limits how many objects one call may ask:
     // an ask beyond it is answered with a fault record, a hit nearer than any
     // other, which fault_in() recognises in the traversal's answer.
-    leaf_intersector<T> intersector(long budget = -1) const {
-        rt::test::served_objects<T> served;
-        served.count = count();
-        served.test = [this](int i, const ray<T>& r, const interval<T>& range) { return test(i, r, range); };
-        served.budget = budget;
-        return served;
+    leaf_intersector<T> intersector(long budget = -1) const { return served(budget); }
+
+    // The same callback in chapter 03's form (object_intersector), for brute force.
+    rt::test::served_objects<T> served(long budget = -1) const {
+        rt::test::served_objects<T> s;
+        s.count = count();
+        s.test = [this](int i, const ray<T>& r, const interval<T>& range) { return test(i, r, range); };
+        s.budget = budget;
+        return s;
     }
 };
 
-// Brute force: every object, lowest index first; an equal t later does not
-// replace the first one found.
+// One call the tree made: which object, about which range, and what the test answered. The test's
+// callback writes it down as it answers (under the grader, in the grader's own process), so a rule
+// about the calls is checked from this record, whatever the traversal returns.
 template <class T>
-std::optional<hit_record<T>> brute_force(const objects<T>& scene, const ray<T>& r, interval<T> range) {
-    std::optional<hit_record<T>> best;
-    for (int i = 0; i < scene.count(); ++i)
-        if (auto hit = scene.test(i, r, range)) {
-            hit->object = i;
-            range.max = hit->t;
-            best = hit;
-        }
-    return best;
+struct asked {
+    int object = 0;
+    interval<T> range{};
+    std::optional<hit_record<T>> answer;
+};
+template <class T>
+using call_record = std::shared_ptr<std::vector<asked<T>>>;
+
+// The scene's callback, recording every call into `record`.
+template <class T>
+leaf_intersector<T> recording_intersector(const objects<T>& scene, const call_record<T>& record) {
+    rt::test::served_objects<T> s = scene.served();
+    s.test = [&scene, record](int i, const ray<T>& r, const interval<T>& range) {
+        auto answer = scene.test(i, r, range);
+        record->push_back({i, range, answer});
+        return answer;
+    };
+    return s;
+}
+
+// build_sah under a bound on its memory derived from the number of objects (memory_bound.hpp): a
+// tree of n objects has at most 2n - 1 nodes, so a build that keeps making nodes (a split that puts
+// every object on one side is the same node again, split again forever) runs out of it at once and
+// fails the same way on every run. The grader's runner builds under the same bound
+// (tests/support/rpc/ch08.cpp).
+inline constexpr const char* no_progress =
+    "build_sah did not return a tree: it threw, or it used far more memory than a tree of these objects "
+    "needs. A split must put at least one object on EACH side; a split with an empty side makes the node "
+    "again, which is split the same way forever";
+
+template <class T>
+bvh<T> build_sah_bounded(const std::vector<aabb<T>>& boxes, const build_options& options = {}) {
+    const rt::test::memory_bound bound(rt::test::tree_build_memory(boxes.size(), sizeof(bvh_node<T>)));
+    try {
+        return build_sah(boxes, options);
+    } catch (const std::invalid_argument&) {
+        throw;
+    } catch (const std::exception&) {
+        throw std::runtime_error(no_progress);
+    }
+}
+
+// Brute force: chapter 03's closest_hit over every object.
+template <class T>
+std::optional<hit_record<T>> brute_force(const objects<T>& scene, const ray<T>& r, const interval<T>& range) {
+    return ch03::closest_hit<T>(scene.count(), scene.served(), r, range);
 }
 
 // Bit-for-bit equality of two answers: both misses, or the same object and

@@ -103,6 +103,22 @@ bool any_hit(const bvh<T>& tree, const leaf_intersector<T>& intersect, const ray
 #endif
 
 RT_RPC_FUNCTION(rt::ch08, intersect_box)
+#if defined(RT_RPC_RUNNER)
+// The runner builds under the same bound on memory as the tests (ch08_scenes.hpp, build_sah_bounded):
+// a build that makes no progress fails at once, the same way on every run.
+#include "memory_bound.hpp"
+namespace rt::ch08 {
+template <class T>
+bvh<T> bounded_build_sah(const std::vector<aabb<T>>& boxes, const build_options& options) {
+    const rt::test::memory_bound bound(rt::test::tree_build_memory(boxes.size(), sizeof(bvh_node<T>)));
+    return build_sah(boxes, options);
+}
+}  // namespace rt::ch08
+static const bool rt_rpc_served_build_sah =
+    ::rt::rpc::serve(RT_RPC_CHAPTER "::build_sah<float>", &rt::ch08::bounded_build_sah<float>) &&
+    ::rt::rpc::serve(RT_RPC_CHAPTER "::build_sah<double>", &rt::ch08::bounded_build_sah<double>);
+#else
 RT_RPC_FUNCTION(rt::ch08, build_sah)
+#endif
 RT_RPC_FUNCTION(rt::ch08, closest_hit)
 RT_RPC_FUNCTION(rt::ch08, any_hit)

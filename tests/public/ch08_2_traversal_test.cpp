@@ -43,7 +43,7 @@ int count_differences(const objects<T>& scene, const bvh<T>& tree, std::mt19937_
 
 }  // namespace
 
-TEST_CASE_TEMPLATE("an empty tree is a miss, and no object is asked", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("traversal: an empty tree is a miss, and no object is asked", T, RT_SCALARS) {
     const objects<T> scene;
     const bvh<T> tree = build_median(scene.boxes());
     const ray<T> r{{0, 0, 0}, {0, 0, -1}};
@@ -56,7 +56,7 @@ TEST_CASE_TEMPLATE("an empty tree is a miss, and no object is asked", T, RT_SCAL
                   "any_hit on an empty tree: nothing can be hit, and intersect must never be called");
 }
 
-TEST_CASE_TEMPLATE("one object: the tree gives exactly brute force's hit", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("traversal: one object: the tree gives exactly brute force's hit", T, RT_SCALARS) {
     objects<T> scene;
     scene.spheres.push_back({{0, 0, -5}, T(1)});
     const bvh<T> tree = build_median(scene.boxes());
@@ -72,28 +72,52 @@ TEST_CASE_TEMPLATE("one object: the tree gives exactly brute force's hit", T, RT
                   "a ray pointing away from the only sphere misses it");
 }
 
-TEST_CASE_TEMPLATE("the nearest hit wins even when another leaf is visited first", T, RT_SCALARS) {
-    // A row of spheres along -z, one per leaf (max_leaf_size 1). The ray from
-    // the side crosses all of them; only the nearest is the answer.
+TEST_CASE_TEMPLATE("traversal: the nearest hit wins even when another leaf is visited first", T, RT_SCALARS) {
+    // Two leaves whose boxes overlap along the ray. Object 0, a big sphere,
+    // has the box the ray enters first (at t = 6) but is hit only at t = 8.06;
+    // object 1, a small sphere, has a box entered later (t = 7.2) and is hit
+    // nearer, at t = 7.2. Nearest child first visits object 0's leaf first:
+    // its hit is not yet the answer.
     objects<T> scene;
-    for (int i = 0; i < 8; ++i) scene.spheres.push_back({{0, 0, T(-3 * i - 3)}, T(1)});
+    scene.spheres.push_back({{0, 3, -10}, T(4)});        // box y in [-1, 7], z in [-14, -6]
+    scene.spheres.push_back({{0, T(-0.5), T(-7.5)}, T(0.3)});  // box z in [-7.8, -7.2]
     build_options one_per_leaf;
     one_per_leaf.max_leaf_size = 1;
     const bvh<T> tree = build_median(scene.boxes(), one_per_leaf);
+    const ray<T> r{{0, T(-0.5), 0}, {0, 0, -1}};
+    const auto want = brute_force(scene, r, rt::test::everything_ahead<T>());
+    REQUIRE(want.has_value());
+    REQUIRE(want->object == 1);
+    const auto got = closest_hit(tree, scene.intersector(), r, rt::test::everything_ahead<T>());
+    REQUIRE_MESSAGE(got.has_value(), "the ray along -z at y = -0.5 hits both spheres");
+    CHECK_MESSAGE(got->object != 0,
+                  "the search stopped at the first leaf with a hit. The ray enters the big sphere's box first (t = "
+                  "6) and hits the sphere at t = 8.06, but the small sphere's box, entered later (t = 7.2), holds a "
+                  "nearer hit (t = 7.2). Boxes overlap: a hit in one leaf is only the best SO FAR. Keep popping "
+                  "the nodes that wait on the stack and skip only those whose entry lies beyond the best t "
+                  "(entry > widen_exit(best t)). Got "
+                      << object_of(got));
+    CHECK_MESSAGE(same_answer(want, got), "brute force finds " << object_of(want) << "; the tree finds "
+                                                               << object_of(got));
+
+    // A row of spheres along -z, one per leaf: the ray along the row crosses
+    // all of them; only the nearest is the answer.
+    objects<T> row;
+    for (int i = 0; i < 8; ++i) row.spheres.push_back({{0, 0, T(-3 * i - 3)}, T(1)});
+    const bvh<T> row_tree = build_median(row.boxes(), one_per_leaf);
     for (T dz : {T(-1), T(1)}) {
-        const ray<T> r{{0, 0, dz < 0 ? T(0) : T(-30)}, {0, 0, dz}};
-        const auto want = brute_force(scene, r, rt::test::everything_ahead<T>());
-        const auto got = closest_hit(tree, scene.intersector(), r, rt::test::everything_ahead<T>());
-        CHECK_MESSAGE(same_answer(want, got),
+        const ray<T> along{{0, 0, dz < 0 ? T(0) : T(-30)}, {0, 0, dz}};
+        const auto nearest = brute_force(row, along, rt::test::everything_ahead<T>());
+        const auto found = closest_hit(row_tree, row.intersector(), along, rt::test::everything_ahead<T>());
+        CHECK_MESSAGE(same_answer(nearest, found),
                       "a ray along the row of 8 spheres hits every one of them; the answer is the nearest ("
-                          << object_of(want) << "). Got " << object_of(got)
-                          << ". A farther one means the search stopped at the first leaf with a hit, or did not "
-                             "shrink range.max to the best t so far, or visited the far child and never came "
-                             "back to the near one");
+                          << object_of(nearest) << "). Got " << object_of(found)
+                          << ". A farther one means the leaf's objects were asked about the whole range instead "
+                             "of (range.min, best t so far), or the far child was visited first and its hit kept");
     }
 }
 
-TEST_CASE_TEMPLATE("nearest child first, and boxes beyond the closest hit are skipped", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("traversal: nearest child first, and boxes beyond the closest hit are skipped", T, RT_SCALARS) {
     // 32 spheres in a row along +x, one per leaf. A ray along the row hits
     // all of them; a tree walked nearest-first finds the first sphere, and
     // every other box then starts beyond that hit and is skipped.
@@ -114,7 +138,7 @@ TEST_CASE_TEMPLATE("nearest child first, and boxes beyond the closest hit are sk
     if (!fault) CHECK_MESSAGE(got->object == 0, "the nearest sphere is object 0; got " << object_of(got));
 }
 
-TEST_CASE_TEMPLATE("equal t: the lowest object index wins, whatever order the tree visits", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("traversal: equal t: the lowest object index wins, whatever order the tree visits", T, RT_SCALARS) {
     // The same sphere three times, at indices 1, 4 and 6, among others; the
     // copies are hit at exactly the same t. Brute force keeps index 1.
     objects<T> scene;
@@ -135,7 +159,7 @@ TEST_CASE_TEMPLATE("equal t: the lowest object index wins, whatever order the tr
                       << object_of(got));
 }
 
-TEST_CASE_TEMPLATE("random spheres: the tree's closest hit is brute force's, bit for bit", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("traversal: random spheres: the tree's closest hit is brute force's, bit for bit", T, RT_SCALARS) {
     std::mt19937_64 rng(8001);
     objects<T> scene;
     add_random_spheres(scene, rng, 300, 10, 0.05, 0.8);
@@ -147,7 +171,7 @@ TEST_CASE_TEMPLATE("random spheres: the tree's closest hit is brute force's, bit
                                       << first);
 }
 
-TEST_CASE_TEMPLATE("random triangles and a flat mesh: the tree's closest hit is brute force's", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("traversal: random triangles and a flat mesh: the tree's closest hit is brute force's", T, RT_SCALARS) {
     std::mt19937_64 rng(8002);
     objects<T> scene;
     add_random_triangles(scene, rng, 200, 5, 1.5);
@@ -179,7 +203,7 @@ TEST_CASE_TEMPLATE("random triangles and a flat mesh: the tree's closest hit is 
                                     << first_wrong);
 }
 
-TEST_CASE_TEMPLATE("any_hit says whether closest_hit finds something", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("traversal: any_hit says whether closest_hit finds something", T, RT_SCALARS) {
     std::mt19937_64 rng(8003);
     objects<T> scene;
     add_random_spheres(scene, rng, 100, 10, 0.1, 1.0);

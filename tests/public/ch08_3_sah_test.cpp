@@ -34,7 +34,7 @@ objects<T> clustered_scene(std::mt19937_64& rng) {
 
 }  // namespace
 
-TEST_CASE_TEMPLATE("the SAH tree holds every object once, with exact boxes and small leaves", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("sah: the SAH tree holds every object once, with exact boxes and small leaves", T, RT_SCALARS) {
     std::mt19937_64 rng(8101);
     objects<T> scene;
     add_random_spheres(scene, rng, 150, 10, 0.05, 1.0);
@@ -43,25 +43,25 @@ TEST_CASE_TEMPLATE("the SAH tree holds every object once, with exact boxes and s
         build_options options;
         options.max_leaf_size = leaf;
         const auto boxes = scene.boxes();
-        const bvh<T> tree = build_sah(boxes, options);
+        const bvh<T> tree = build_sah_bounded(boxes, options);
         const std::string problem = tree_problem(tree, boxes, leaf);
         CHECK_MESSAGE(problem.empty(), "with max_leaf_size " << leaf << ": " << problem
                                                             << ". When you partition a node's objects, every object "
                                                                "goes to exactly one side, and each node's box is "
                                                                "the union of the boxes of the objects below it");
     }
-    const bvh<T> none = build_sah(std::vector<aabb<T>>{});
+    const bvh<T> none = build_sah_bounded(std::vector<aabb<T>>{});
     CHECK_MESSAGE((none.nodes.empty() && none.order.empty()), "no objects: an empty tree (no nodes)");
 }
 
-TEST_CASE_TEMPLATE("objects whose centres coincide are still split down to the leaf size", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("sah: objects whose centres coincide are still split down to the leaf size", T, RT_SCALARS) {
     // 40 copies of the same sphere: no binned plane separates them.
     objects<T> scene;
     for (int i = 0; i < 40; ++i) scene.spheres.push_back({{1, 2, 3}, T(0.5)});
     build_options options;
     options.max_leaf_size = 4;
     const auto boxes = scene.boxes();
-    const bvh<T> tree = build_sah(boxes, options);
+    const bvh<T> tree = build_sah_bounded(boxes, options);
     const std::string problem = tree_problem(tree, boxes, 4);
     CHECK_MESSAGE(problem.empty(), problem << ". When every centre is the same point there is no candidate plane; a "
                                               "node with more than max_leaf_size objects is then cut in two halves");
@@ -71,12 +71,12 @@ TEST_CASE_TEMPLATE("objects whose centres coincide are still split down to the l
     CHECK_MESSAGE(got->object == 0, "40 copies of one sphere are hit at the same t: the lowest index, 0, wins");
 }
 
-TEST_CASE_TEMPLATE("on a clustered scene the SAH tree is cheaper than the median tree", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("sah: on a clustered scene the SAH tree is cheaper than the median tree", T, RT_SCALARS) {
     std::mt19937_64 rng(8102);
     const objects<T> scene = clustered_scene<T>(rng);
     const auto boxes = scene.boxes();
     const T median = sah_cost(build_median(boxes));
-    const bvh<T> sah_tree = build_sah(boxes);
+    const bvh<T> sah_tree = build_sah_bounded(boxes);
     const std::string problem = tree_problem(sah_tree, boxes, build_options{}.max_leaf_size);
     REQUIRE_MESSAGE(problem.empty(), problem);
     const T sah = sah_cost(sah_tree);
@@ -87,11 +87,11 @@ TEST_CASE_TEMPLATE("on a clustered scene the SAH tree is cheaper than the median
                          "A_L |L| + A_R |R| over all axes and bins, not the middle object");
 }
 
-TEST_CASE_TEMPLATE("closest hit through the SAH tree equals brute force", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("sah: closest hit through the SAH tree equals brute force", T, RT_SCALARS) {
     std::mt19937_64 rng(8103);
     objects<T> scene = clustered_scene<T>(rng);
     add_random_triangles(scene, rng, 100, 20, 3.0);
-    const bvh<T> tree = build_sah(scene.boxes());
+    const bvh<T> tree = build_sah_bounded(scene.boxes());
     const auto intersect = scene.intersector();
     int differ = 0;
     for (int i = 0; i < 400; ++i) {
@@ -104,7 +104,7 @@ TEST_CASE_TEMPLATE("closest hit through the SAH tree equals brute force", T, RT_
                                         "if the tree is valid (previous tests), the traversal is at fault");
 }
 
-TEST_CASE_TEMPLATE("build_sah refuses options that cannot make a tree", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("sah: build_sah refuses options that cannot make a tree", T, RT_SCALARS) {
     std::vector<aabb<T>> boxes(3);
     for (size_t i = 0; i < boxes.size(); ++i) boxes[i].grow(vec3<T>(T(i), 0, 0));
     build_options no_leaves;
