@@ -15,9 +15,12 @@
 //               cancels; the robust test draws it clean.
 //
 // With --error the program also reports, for each column, how many pixels
-// changed from hit to miss (or back) against a reference computed with the
-// robust test in long double from the same rays, and the largest error in t
-// in ULPs of the chosen precision.
+// changed from hit to miss (or back) against the reference solution's answers
+// for the same rays (reference_hits.bin, numbers made from the solutions),
+// and the median and largest error in t in ULPs of the chosen precision. For
+// a picture size the file does not hold, the reference is your own robust
+// test in long double (a mistake made in both precisions then cancels out).
+#include "picture_scenes.hpp"
 #include "robust_sphere.hpp"
 #include "03-scene-loop/scene_loop.hpp"
 #include "02-sphere/sphere.hpp"
@@ -37,45 +40,7 @@ namespace {
 
 using namespace rt;
 
-// ---------------------------------------------------------------- the scenes
-
-// The three far spheres: unit radius, at these distances from the camera.
-const double far_distances[] = {100.0, 4100.0, 20000.0};
-const double far_spacing = 2.1;      // centre-to-centre, side by side across the panel
-const double far_view_height = 4.8;  // orthographic view rectangle height
-
-// The huge ground.
-const double ground_radius = 1e6;
-const double camera_height = 1.0;
-
-enum class which_scene { far_spheres, huge_ground };
-
-template <class T>
-std::vector<sphere<T>> spheres_of(which_scene sc) {
-    std::vector<sphere<T>> s;
-    if (sc == which_scene::far_spheres) {
-        for (int i = 0; i < 3; ++i)
-            s.push_back({{T((i - 1) * far_spacing), T(0), T(-far_distances[i])}, T(1), i});
-    } else {
-        s.push_back({{T(0), T(-ground_radius), T(0)}, T(ground_radius), 0});  // the ground: top at y = 0
-        s.push_back({{T(-0.6), T(0.5), T(-4.0)}, T(0.5), 1});                  // balls resting on it
-        s.push_back({{T(0.9), T(0.3), T(-3.0)}, T(0.3), 2});
-    }
-    return s;
-}
-
-// A panel's camera: the primary ray through pixel (col, row) of a panel of
-// the given size. Both cameras are built in T, so the rays themselves carry
-// the rounding of the chosen precision.
-template <class T>
-ray<T> panel_ray(which_scene sc, int col, int row, int width, int height) {
-    if (sc == which_scene::far_spheres) {
-        auto frame = camera_frame<T>::look_at({0, 0, 0}, {0, 0, -1}, {0, 1, 0});
-        return orthographic_camera<T>(frame, T(far_view_height), width, height).primary_ray(col, row);
-    }
-    auto frame = camera_frame<T>::look_at({0, T(camera_height), 0}, {0, T(0.35), -4}, {0, 1, 0});
-    return pinhole_camera<T>(frame, T(50), width, height).primary_ray(col, row);
-}
+using namespace rt::ch07_picture;
 
 // --------------------------------------------------- the two sphere tests
 
@@ -84,12 +49,6 @@ enum class formula { plain, robust };
 template <class T>
 std::optional<hit_record<T>> intersect(formula fm, const sphere<T>& s, const ray<T>& r, const interval<T>& range) {
     return fm == formula::plain ? ch02::intersect_sphere(s, r, range) : ch07::intersect_sphere_robust(s, r, range);
-}
-
-template <class T>
-interval<T> visible_range(which_scene sc) {
-    // Orthographic rays start on the image plane (t > 0); pinhole rays need t > 1.
-    return sc == which_scene::far_spheres ? interval<T>{T(0), infinity<T>} : interval<T>::in_front_of_image_plane();
 }
 
 // ---------------------------------------------------------------- shading
@@ -156,9 +115,9 @@ image render_panels(const program_options& opt) {
 // ------------------------------------------------------------ error report
 
 // Per (pixel, sphere) pair: does the ray hit that sphere, and where? The
-// reference is the robust test in long double on the very same inputs
-// (the T ray and the T sphere, converted exactly), so what remains is the
-// error of the formula in T, not of the scene description.
+// reference answers are for the very same inputs (the T ray and the T
+// sphere), so what remains is the error of the formula in T, not of the
+// scene description.
 struct error_tally {
     long wrong_hit_or_miss = 0;  // pixels where some sphere's hit/miss differs from the reference
     std::vector<double> ulps;    // |t - t_ref| in ULPs of T, for each pair both call a hit
@@ -182,23 +141,34 @@ sphere<long double> widen(const sphere<T>& s) {
     return {convert<long double>(s.center), static_cast<long double>(s.radius), s.material};
 }
 
+// The reference t of sphere i for the ray through (col, row): from the
+// file when it holds this picture size, else your robust test in long double.
 template <class T>
-error_tally measure(which_scene sc, formula fm, int width, int height) {
+std::optional<T> reference_t(const std::optional<reference_answers<T>>& file, const sphere<T>& s, int i,
+                             const ray<T>& r, const interval<T>& range, int col, int row) {
+    if (file) return file->at(col, row, i);
+    const interval<long double> wide_range{static_cast<long double>(range.min), static_cast<long double>(range.max)};
+    auto hit = ch07::intersect_sphere_robust(widen(s), widen(r), wide_range);
+    return hit ? std::optional<T>(static_cast<T>(hit->t)) : std::nullopt;
+}
+
+template <class T>
+error_tally measure(which_scene sc, formula fm, int width, int height,
+                    const std::optional<reference_answers<T>>& file) {
     const std::vector<sphere<T>> spheres = spheres_of<T>(sc);
     const interval<T> range = visible_range<T>(sc);
-    const interval<long double> wide_range{static_cast<long double>(range.min), static_cast<long double>(range.max)};
     error_tally tally;
     for (int row = 0; row < height; ++row) {
         for (int col = 0; col < width; ++col) {
             const ray<T> r = panel_ray<T>(sc, col, row, width, height);
             bool pixel_wrong = false;
-            for (const sphere<T>& s : spheres) {
-                auto got = intersect(fm, s, r, range);
-                auto want = ch07::intersect_sphere_robust(widen(s), widen(r), wide_range);
+            for (int i = 0; i < int(spheres.size()); ++i) {
+                auto got = intersect(fm, spheres[size_t(i)], r, range);
+                auto want = reference_t(file, spheres[size_t(i)], i, r, range, col, row);
                 if (got.has_value() != want.has_value()) {
                     pixel_wrong = true;
                 } else if (got) {
-                    tally.ulps.push_back(ulp_distance(got->t, static_cast<T>(want->t)));
+                    tally.ulps.push_back(ulp_distance(got->t, *want));
                 }
             }
             if (pixel_wrong) ++tally.wrong_hit_or_miss;
@@ -211,14 +181,18 @@ template <class T>
 std::string error_report(const program_options& opt) {
     const int w = opt.width / 2, h = opt.height / 2;  // one panel's size
     if (w == 0 || h == 0) return "the image is too small for 2 x 2 panels: nothing to measure";
-    std::string out = std::string("against the robust test in long double, per ") + std::to_string(w) + "x" +
-                      std::to_string(h) + " panel:";
+    std::string out, why;
     const char* scene_names[] = {"far spheres", "huge ground"};
     const char* formula_names[] = {"plain (ch02)", "robust (ch07)"};
-    for (which_scene sc : {which_scene::far_spheres, which_scene::huge_ground}) {
+    for (which_scene sc : both_scenes) {
+        const auto file = read_reference<T>(RT_CH07_REFERENCE_HITS, sc, w, h, why);
+        if (out.empty())
+            out = (file ? std::string("against the reference solution's answers (reference_hits.bin), per ")
+                        : "against your robust test in long double (" + why + "), per ") +
+                  std::to_string(w) + "x" + std::to_string(h) + " panel:";
         out += std::string("\n  ") + scene_names[int(sc)] + ":";
         for (formula fm : {formula::plain, formula::robust}) {
-            error_tally e = measure<T>(sc, fm, w, h);
+            error_tally e = measure<T>(sc, fm, w, h, file);
             char line[200];
             std::snprintf(line, sizeof line, "  %s: %ld px hit/miss wrong, t error median %.3g / max %.3g ULP;",
                           formula_names[int(fm)], e.wrong_hit_or_miss, e.quantile(0.5), e.quantile(1.0));

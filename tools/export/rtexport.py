@@ -55,9 +55,15 @@ KIT_SHIP = {
                     "tests/common/CMakeLists.txt", "tests/scenes/CMakeLists.txt", "tools/CMakeLists.txt"],
     "READMEs": ["README.md", CHAPTER + "README.md", "scenes/README.md"],
     "chapter headers": [CHAPTER + "*.hpp"],
-    # A measurement that runs the student's chapter 02 code (README, "Shadow acne").
-    "programs": ["chapters/06-shading/acne_study.cpp"],
+    # A measurement that runs the student's chapter 02 code (README, "Shadow acne"), and chapter 07's
+    # worked numbers, whose exact roots come from the student's own code (README, "The worked numbers").
+    "programs": ["chapters/06-shading/acne_study.cpp", "chapters/07-precision/worked_values.cpp"],
     "pictures": [CHAPTER + "**.png", CHAPTER + "**.svg", "tests/common/data/*.png"],
+    # Numbers, not code: the reference solution's t for every ray of chapter
+    # 07's picture, written by ch07-reference-hits and kept equal to the
+    # solution's answers by ctest ch07.reference_hits. The kit's --error
+    # measures against them instead of the student's own long double code.
+    "reference answers": ["chapters/07-precision/reference_hits.bin"],
     "common/": ["common/*.hpp", "common/*.cpp", "common/*.html"],
     "public tests": ["tests/public/chNN_*.cpp", "tests/public/chNN_*.hpp", "tests/manifest.json",
                      "tests/support/**.hpp", "tests/support/**.cpp", "tests/common/*.cpp",
