@@ -325,6 +325,14 @@ class KitPreview(ToolTest):
         entry = [t for t in data["tests"] if t["name"] == "ch03 compilation"]
         self.assertTrue(entry, "no 'ch03 compilation' entry")
         self.assertIn("error", entry[0]["output"], "the 'ch03 compilation' entry lacks the compiler's message")
+        with open(os.path.join(kit, "report.html"), encoding="utf-8") as f:     # the preview's page, beside it
+            page = f.read()
+        self.assertIn("The page with your pictures: " + os.path.join(kit, "report.html"), graded.stdout)
+        for cid in ("ch01", "ch02", "ch03", "ch04"):
+            self.assertIn(f'<section class="chapter" id="{cid}">', page)
+        self.assertRegex(page, r'<div class="error-line">chapters/03-scene-loop/scene_loop\.cpp:\d+:\d+: error: ',
+                         "the page does not show the compiler's first error line")
+        self.assertIn('id="picture-ch01"', page, "chapter 01's picture is not on the page")
         # Every message the broken chapter causes in a later one names it (chapter 04's picture is drawn
         # with chapter 03's loop), and the terminal shows the compiler's first error line.
         caused = [t for t in data["tests"] if t["tags"][0] == "ch04" and t["status"] != "passed"]
