@@ -45,6 +45,13 @@ void far_sphere() {
     std::printf("  c         exact %.4Lf  float %.1f\n", ld(fx) * fx + ld(fz) * fz - 1, double(c));
     std::printf("  half_b^2  exact %.1Lf  float %.1f\n", ld(fz) * fz, double(hb2));
     std::printf("  disc/4    exact %.4Lf  float %.1f\n", ld(fz) * fz - (ld(fx) * fx + ld(fz) * fz - 1), double(disc));
+    // Chapter 02's discriminant in float for rays from x = 0 outwards, in steps of 2^-10.
+    float x = 0;
+    while (x * x + fz * fz - 1.0f <= fz * fz && x < 4) x += 1.0f / 1024;  // disc/4 = half_b^2 - c >= 0
+    const float x101 = 1.01f, c101 = x101 * x101 + fz * fz - 1.0f;
+    std::printf("  chapter 02's disc/4 is >= 0 (a hit) for every ray with x below %.4f (the sphere's radius is 1);\n"
+                "  at x = 1.01 it is %.1f, a hit at t = %.1f\n",
+                double(x), double(fz * fz - c101), double(fz - std::sqrt(fz * fz - c101)));
 }
 
 void huge_ground() {

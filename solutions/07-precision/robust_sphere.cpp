@@ -1,8 +1,9 @@
 // robust_sphere.cpp — reference solution for chapter 07, one function per step of the lecture.
 #include "07-precision/robust_sphere.hpp"
 
+#include "sphere_pieces.hpp"
+
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -77,17 +78,7 @@ root_pair<T> stable_roots(wide<T> a, wide<T> half_b, wide<T> c, wide<T> quarter_
 // only a sum this careful leaves it an ULP or two of error.
 template <class T>
 wide<T> constant_term(const scaled_problem<T>& p) {
-    using W = wide<T>;
-    std::array<W, 17> terms{};
-    std::size_t n = 0;
-    for (const double_word<W>& x : p.f) {
-        const double_word<W> square = two_prod(x.hi, x.hi), cross = two_prod(x.hi, W(2) * x.lo);
-        terms[n++] = square.hi, terms[n++] = square.lo, terms[n++] = cross.hi, terms[n++] = cross.lo;
-        terms[n++] = x.lo * x.lo;  // about 2^-100 of f.f: its own rounding cannot matter
-    }
-    const double_word<W> radius_squared = two_prod(p.radius, p.radius);
-    terms[n++] = -radius_squared.hi, terms[n++] = -radius_squared.lo;
-    return sum_k3(terms);
+    return sphere_pieces::exact_constant_term(p.f, two_prod(p.radius, p.radius));
 }
 
 // Step 4: f = o - C exactly, and the powers of two that keep every square

@@ -1,4 +1,5 @@
-// Public tests for chapter 07: the robust sphere test.
+// Public tests for chapter 07, step 6: the whole robust sphere test
+// (steps 1 to 5 on their own are in ch07_steps_test.cpp).
 //
 // Two kinds of cases. The stiff ones come straight from the lecture: a unit
 // sphere thousands of radii away, and a huge ground sphere seen from 1 unit

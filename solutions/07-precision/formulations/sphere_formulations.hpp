@@ -27,6 +27,7 @@
 #pragma once
 
 #include "07-precision/error_free.hpp"
+#include "../sphere_pieces.hpp"
 
 #include "common/interval.hpp"
 #include "common/ray.hpp"
@@ -183,32 +184,17 @@ T unscaled_root(T t, int k) {
     return y;
 }
 
-// c = f.f - r^2 from its exact pieces: (hi + lo)^2 = hi^2 + 2 hi lo + lo^2,
-// each product split into value and error, then summed in triple
-// precision. For a ray origin a fraction of an ULP off the surface, c is
-// 10^9 times smaller than f.f, and a double-word sum would leave it with
-// tens of ULPs of error; this leaves it with about one.
-template <class T>
-T exact_c(const double_word<T> (&f)[3], double_word<T> r2) {
-    std::array<T, 17> terms{};
-    std::size_t n = 0;
-    for (const double_word<T>& x : f) {
-        double_word<T> square = two_prod(x.hi, x.hi), cross = two_prod(x.hi, T(2) * x.lo);
-        terms[n++] = square.hi, terms[n++] = square.lo;
-        terms[n++] = cross.hi, terms[n++] = cross.lo;
-        terms[n++] = x.lo * x.lo;  // about u^2 f.f: its own rounding does not matter
-    }
-    terms[n++] = -r2.hi, terms[n++] = -r2.lo;
-    return sum_k3(terms);
-}
+// c = f.f - r^2 from its exact pieces, in triple precision: the chapter 07
+// solution's step 3, shared (../sphere_pieces.hpp).
+using sphere_pieces::exact_constant_term;
 
-// exact_c for float data in double, kept out of line: only origins within
+// exact_constant_term for float data in double, kept out of line: only origins within
 // about 2^-28 of the surface need it.
 [[gnu::noinline, gnu::cold]] inline double exact_c_cold(const double_word<double> (&f)[3], double r2) {
-    return exact_c(f, double_word<double>{r2, 0});
+    return exact_constant_term(f, double_word<double>{r2, 0});
 }
 
-// exact_c for the compensated form. Float's triple precision (72 bits) is
+// exact_constant_term for the compensated form. Float's triple precision (72 bits) is
 // not enough when c is 2^-55 of f.f (a shadow ray leaving a sphere of radius
 // 1e6): float data sums its exact pieces in double instead (each piece is a
 // float, so converting them loses nothing).
@@ -218,9 +204,9 @@ T exact_c_of(const double_word<T> (&f)[3], double_word<T> r2) {
         const double_word<double> fd[3] = {{double(f[0].hi), double(f[0].lo)},
                                            {double(f[1].hi), double(f[1].lo)},
                                            {double(f[2].hi), double(f[2].lo)}};
-        return static_cast<T>(exact_c(fd, double_word<double>{double(r2.hi), double(r2.lo)}));
+        return static_cast<T>(exact_constant_term(fd, double_word<double>{double(r2.hi), double(r2.lo)}));
     } else {
-        return exact_c(f, r2);
+        return exact_constant_term(f, r2);
     }
 }
 }  // namespace detail
@@ -260,7 +246,7 @@ inline std::optional<float> sphere_float_in_double_word(const ray<float>& ray_, 
 //     exact products (two_prod: an FMA, or Dekker's product);
 //   * the discriminant is a double-word sum; c = f.f - r^2 is one too, and
 //     when it cancels more than 20 bits (an origin on or near the surface)
-//     it is summed again from its exact pieces (detail::exact_c);
+//     it is summed again from its exact pieces (detail::exact_constant_term);
 //   * for float data, a discriminant that cancels more than 20 bits (a ray
 //     grazing a huge sphere) sends the test to double-double.
 // The roots come from the stable pair, so each is within a few ULPs. The
@@ -312,7 +298,7 @@ std::optional<T> sphere_compensated(const ray<T>& ray_, const sphere<T>& s, cons
         if (disc.hi < ar2.hi * T(0x1p-20)) return detail::sphere_float_in_double_word(ray_, s, range);
     }
     // c as a double-word first; only when f.f and r^2 agree in more than
-    // 20 bits is it summed again from exact pieces (detail::exact_c).
+    // 20 bits is it summed again from exact pieces (detail::exact_constant_term).
     dw ff = add_same_sign(add_same_sign(f[0] * f[0], f[1] * f[1]), f[2] * f[2]);
     dw cw = ff - r2;
     T c = std::fabs(cw.hi) > ff.hi * T(0x1p-20) ? cw.value() : detail::exact_c_of(f, r2);
@@ -383,12 +369,12 @@ inline double_word<double> cross_component(float o1, float o2, float c1, float c
 // c from exact pieces, for the rare origin that c_near_surface cannot
 // settle (within about 2^-46 of its terms of the surface, or overflowing in
 // float): f = o - C with the error of each difference (two_sum), then
-// exact_c. Out of line and cold: the common path stays small.
+// exact_constant_term. Out of line and cold: the common path stays small.
 [[gnu::noinline, gnu::cold]] inline double c_from_exact_pieces(const vec3<float>& o, const sphere<float>& s) {
     const vec3<float>& C = s.center;
     double_word<double> f[3];
     for (int j = 0; j < 3; ++j) f[j] = two_sum(double(o[j]), -double(C[j]));
-    return exact_c(f, double_word<double>{double(s.radius) * s.radius, 0});
+    return exact_constant_term(f, double_word<double>{double(s.radius) * s.radius, 0});
 }
 
 // c = f.f - r^2 for the origins nearest the surface, where even
