@@ -35,6 +35,7 @@ from .report import first_compiler_error
 
 SIM = "sim_c++"
 SIMILAR_PERCENT = 50          # a pair is listed when one file consists for this much of the other
+PAIRS_SHOWN = 40              # on the page; the CSV and JSON hold every pair
 SIM_SECONDS = 120
 SIM_MEMORY = 1024 * 1024 * 1024
 _SIM_PERCENT = re.compile(r"^(.+?) consists for (\d+) % of (.+?) material$")
@@ -294,7 +295,10 @@ def build(summary, pairs, sources, title="Class dashboard"):
         else:
             out.append("<p>Groups (each member similar to at least one other): " + "; ".join(
                 "{" + ", ".join(e(x) for x in g) + "}" for g in groups(pairs)) + "</p>")
-        for p in pairs:
+        if len(pairs) > PAIRS_SHOWN:
+            out.append(f'<p class="note">The {PAIRS_SHOWN} most similar pairs of {len(pairs)} are shown; '
+                       "similarity.csv and dashboard.json list them all.</p>")
+        for p in pairs[:PAIRS_SHOWN]:
             a_text = sources[p["a"]][p["file"]].decode("utf-8", errors="replace")
             b_text = sources[p["b"]][p["file"]].decode("utf-8", errors="replace")
             out.append(f'<section class="pair"><h3>{e(p["a"])} and {e(p["b"])}: {e(p["file"])}, {p["percent"]}%'

@@ -272,7 +272,8 @@ class Grader:
             return found
 
         phase = time.monotonic()
-        self.log(f"grader: compiling the exercise files of {len(to_compile)} chapters ...")
+        self.log(f"grader: compiling the exercise files of {len(to_compile)} chapter"
+                 f"{'' if len(to_compile) == 1 else 's'} ...")
         with ThreadPoolExecutor(max_workers=lanes) as pool:
             compiled = dict(zip(to_compile, pool.map(compile_one, to_compile)))
         objects = {}
