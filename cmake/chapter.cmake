@@ -152,6 +152,10 @@ function(rt_chapter_description id number folder title chapter_dir side exercise
       string(APPEND targets "  \"${kind}_tests\": \"$<TARGET_FILE:${id}_${kind}_tests>\",\n")
     endif()
   endforeach()
+  set(solution_program "")
+  if(TARGET ${id}_solution_program)
+    set(solution_program "  \"solution_program\": \"$<TARGET_FILE:${id}_solution_program>\",\n")
+  endif()
   set(reference "")
   if(EXISTS "${chapter_dir}/reference.png")
     set(reference "${chapter_dir}/reference.png")
@@ -167,7 +171,7 @@ function(rt_chapter_description id number folder title chapter_dir side exercise
   \"exercises\": ${exercises_json},
   \"depends\": ${depends_json},
 ${targets}  \"program\": \"$<TARGET_FILE:${id}>\",
-  \"student_library\": \"$<TARGET_FILE:${id}_student>\",
+${solution_program}  \"student_library\": \"$<TARGET_FILE:${id}_student>\",
   \"reference\": \"${reference}\"
 }
 ")
@@ -256,6 +260,15 @@ function(rt_chapter number)
   add_executable(${id} $<TARGET_OBJECTS:${id}_program_objects>)
   target_link_libraries(${id} PRIVATE ${id}_exercises)
   set_target_properties(${id} PROPERTIES OUTPUT_NAME "${id}-${short_name}" RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/bin")
+  # The same program on the solutions: the autograder draws its reference picture with it, from a view it
+  # chooses at grading time (tools/grader/README.md, "Picture"). Built only when asked for (the grader's tree
+  # builds it; its earlier chapters are the solutions there, RT_DEPENDENCIES_FROM_SOLUTIONS).
+  if(TARGET ${id}_solution)
+    add_executable(${id}_solution_program EXCLUDE_FROM_ALL $<TARGET_OBJECTS:${id}_program_objects>)
+    target_link_libraries(${id}_solution_program PRIVATE ${id}_solution)
+    set_target_properties(${id}_solution_program PROPERTIES OUTPUT_NAME "${id}-${short_name}"
+                          RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/bin/solution")
+  endif()
 
   # Tests: every tests/<kind>/chNN_*.cpp file of the chapter.
   foreach(kind public hidden)

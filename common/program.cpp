@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -114,7 +115,35 @@ bool compare_with_reference(const chapter_program& program, const image& img, co
     return r.within(tol);
 }
 
+// v turned by `degrees` about the unit axis k (Rodrigues' formula; right-handed:
+// counter-clockwise seen from the tip of k).
+vec3d rotated(const vec3d& v, const vec3d& k, double degrees) {
+    const double a = degrees * 3.14159265358979323846 / 180.0;
+    const double c = std::cos(a), s = std::sin(a);
+    return v * c + cross(k, v) * s + k * (dot(k, v) * (1.0 - c));
+}
+
 }  // namespace
+
+vec3d turned_eye(const view_turn& view, const vec3d& eye, const vec3d& target, const vec3d& up) {
+    if (view.is_own_view()) return eye;  // the chapter's own picture, unchanged to the last bit
+    const vec3d back = eye - target;     // from the target to the eye
+    if (!(length(back) > 0.0) || !(length(up) > 0.0))
+        throw std::invalid_argument("--view: the camera's eye and look-at point coincide");
+    const vec3d k_up = normalize(up);
+    // Yaw about up, counter-clockwise seen from above: a positive angle moves
+    // the eye to its right (eye (0, 0, 3) looking at the origin goes towards +x).
+    const vec3d yawed = rotated(back, k_up, view.yaw_degrees);
+    // Pitch about the camera's right-hand axis (up x back points to the eye's
+    // right): the negative turn about it takes back towards up, raising the eye.
+    const vec3d right = cross(k_up, yawed);
+    if (!(length(right) > 1e-12 * length(yawed)))
+        throw std::invalid_argument("--view: the camera looks straight along its up direction");
+    const vec3d pitched = rotated(yawed, normalize(right), -view.pitch_degrees);
+    if (!(length(cross(k_up, pitched)) > 1e-6 * length(pitched)))
+        throw std::invalid_argument("--view: the turned camera would look straight along its up direction");
+    return target + pitched;
+}
 
 render_function by_precision(image (*as_float)(const program_options&), image (*as_double)(const program_options&)) {
     return [=](const program_options& opt, long& rays) {
@@ -152,6 +181,14 @@ int run_chapter_program(int argc, char** argv, const chapter_program& program) {
                    "reference PNG: exit 2 if the render differs past tolerance (and write the difference image)")
         ->check(CLI::ExistingFile);
     app.add_flag("--error", opt.report_error, "also report the numerical error against a higher-precision reference");
+    std::vector<double> view;
+    app.add_option("--view", view,
+                   "YAW,PITCH: see the scene from a camera turned about the point it looks at, YAW degrees about "
+                   "its up direction (positive: the eye moves right) and PITCH degrees up over the scene "
+                   "(positive: the eye rises); 0,0 is the chapter's own view")
+        ->delimiter(',')
+        ->expected(2)
+        ->check(CLI::Range(-89.0, 89.0));
     std::string scene_path;
     if (program.draws_scene)
         app.add_option("--scene", scene_path,
@@ -162,10 +199,13 @@ int run_chapter_program(int argc, char** argv, const chapter_program& program) {
         return app.exit(e);
     }
     opt.prec = prec == "float" ? precision::single : precision::double_;
+    if (view.size() == 2) opt.view = {view[0], view[1]};
 
     try {
         if (program.draws_scene) {
             opt.scene = read_scene(program, scene_path);
+            camera_description& cam = opt.scene.camera;
+            cam.eye = turned_eye(opt.view, cam.eye, cam.look_at, cam.up);
             if (width_option->count() == 0) opt.width = opt.scene.camera.width;
             if (height_option->count() == 0) opt.height = opt.scene.camera.height;
         }

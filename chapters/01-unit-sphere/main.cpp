@@ -17,7 +17,9 @@ using namespace rt;
 
 template <class T>
 image render_unit_sphere(const program_options& opt) {
-    auto frame = camera_frame<T>::look_at({0, 0, 3}, {0, 0, 0}, {0, 1, 0});
+    // The eye at (0, 0, 3), or turned about the sphere's centre with --view.
+    const vec3d eye = turned_eye(opt.view, {0, 0, 3}, {0, 0, 0}, {0, 1, 0});
+    auto frame = camera_frame<T>::look_at(convert<T>(eye), {0, 0, 0}, {0, 1, 0});
     pinhole_camera<T> camera(frame, T(45), opt.width, opt.height);
     return render(opt.width, opt.height, [&](int col, int row) {
         ray<T> r = camera.primary_ray(col, row);

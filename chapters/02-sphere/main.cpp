@@ -31,9 +31,13 @@ color sky(const ray<T>& r) {
 
 template <class T>
 image render_sphere(const program_options& opt) {
-    auto frame = camera_frame<T>::look_at({0, 0, 0}, {0, 0, -1}, {0, 1, 0});
+    // The eye at the origin looking down -z at the ball, or turned about the
+    // ball's centre with --view.
+    const vec3d centre{0, 0, -5};
+    const vec3d eye = turned_eye(opt.view, {0, 0, 0}, centre, {0, 1, 0});
+    auto frame = camera_frame<T>::look_at(convert<T>(eye), convert<T>(centre), {0, 1, 0});
     pinhole_camera<T> camera(frame, T(60), opt.width, opt.height);
-    const sphere<T> ball{{0, 0, -5}, T(1.5)};
+    const sphere<T> ball{convert<T>(centre), T(1.5)};
     // Behind the camera (z > 0). The line through the eye and a pixel meets it
     // at t < 0 for the pixels toward its centre mirrored through the eye,
     // (-3, -1.2, -6): down and to the left, inside the left half, clear of the red sphere.

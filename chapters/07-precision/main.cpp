@@ -103,7 +103,7 @@ image render_panels(const program_options& opt) {
         if (p.col == 0 && col > 0) return color(0.0f);  // a thin line between the columns
         if (p.row == 0 && row > 0) return color(0.0f);  // and between the rows
         const std::vector<sphere<T>>& spheres = p.scene == which_scene::far_spheres ? far : ground;
-        const ray<T> r = panel_ray<T>(p.scene, p.col, p.row, p.width, p.height);
+        const ray<T> r = panel_ray<T>(p.scene, opt.view, p.col, p.row, p.width, p.height);
         ch03::object_intersector<T> one = [&](int i, const ray<T>& rr, const interval<T>& range) {
             return intersect(p.fm, spheres[size_t(i)], rr, range);
         };
@@ -153,14 +153,14 @@ std::optional<T> reference_t(const std::optional<reference_answers<T>>& file, co
 }
 
 template <class T>
-error_tally measure(which_scene sc, formula fm, int width, int height,
+error_tally measure(which_scene sc, const view_turn& view, formula fm, int width, int height,
                     const std::optional<reference_answers<T>>& file) {
     const std::vector<sphere<T>> spheres = spheres_of<T>(sc);
     const interval<T> range = visible_range<T>(sc);
     error_tally tally;
     for (int row = 0; row < height; ++row) {
         for (int col = 0; col < width; ++col) {
-            const ray<T> r = panel_ray<T>(sc, col, row, width, height);
+            const ray<T> r = panel_ray<T>(sc, view, col, row, width, height);
             bool pixel_wrong = false;
             for (int i = 0; i < int(spheres.size()); ++i) {
                 auto got = intersect(fm, spheres[size_t(i)], r, range);
@@ -185,14 +185,17 @@ std::string error_report(const program_options& opt) {
     const char* scene_names[] = {"far spheres", "huge ground"};
     const char* formula_names[] = {"plain (ch02)", "robust (ch07)"};
     for (which_scene sc : both_scenes) {
-        const auto file = read_reference<T>(RT_CH07_REFERENCE_HITS, sc, w, h, why);
+        // The file holds the rays of the chapter's own view only.
+        const auto file = opt.view.is_own_view() ? read_reference<T>(RT_CH07_REFERENCE_HITS, sc, w, h, why)
+                                                 : std::nullopt;
+        if (!opt.view.is_own_view()) why = "the reference file holds the chapter's own view, not --view's";
         if (out.empty())
             out = (file ? std::string("against the reference solution's answers (reference_hits.bin), per ")
                         : "against your robust test in long double (" + why + "), per ") +
                   std::to_string(w) + "x" + std::to_string(h) + " panel:";
         out += std::string("\n  ") + scene_names[int(sc)] + ":";
         for (formula fm : {formula::plain, formula::robust}) {
-            error_tally e = measure<T>(sc, fm, w, h, file);
+            error_tally e = measure<T>(sc, opt.view, fm, w, h, file);
             char line[200];
             std::snprintf(line, sizeof line, "  %s: %ld px hit/miss wrong, t error median %.3g / max %.3g ULP;",
                           formula_names[int(fm)], e.wrong_hit_or_miss, e.quantile(0.5), e.quantile(1.0));

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "common/camera.hpp"
+#include "common/program.hpp"
 #include "common/interval.hpp"
 #include "common/ray.hpp"
 #include "common/shapes.hpp"
@@ -50,14 +51,31 @@ std::vector<sphere<T>> spheres_of(which_scene sc) {
 // A panel's camera: the primary ray through pixel (col, row) of a panel of
 // the given size. Both cameras are built in T, so the rays themselves carry
 // the rounding of the chosen precision.
+//
+// --view (common/program.hpp) turns the huge ground's camera about the point
+// it looks at, as in every chapter. The far spheres' camera is orthographic
+// and its spheres lie 100 to 20000 units away: any turn would sweep its
+// parallel rays off them, so it moves sideways instead, YAW/2 percent of its
+// view height to the right and PITCH/2 percent up (the distances, which are
+// the experiment, stay). The chapter's own view (0,0) gives the same rays,
+// bit for bit, as the camera without a view.
 template <class T>
-ray<T> panel_ray(which_scene sc, int col, int row, int width, int height) {
+ray<T> panel_ray(which_scene sc, const view_turn& view, int col, int row, int width, int height) {
     if (sc == which_scene::far_spheres) {
-        auto frame = camera_frame<T>::look_at({0, 0, 0}, {0, 0, -1}, {0, 1, 0});
+        const vec3d eye{view.yaw_degrees / 200 * far_view_height, view.pitch_degrees / 200 * far_view_height, 0};
+        auto frame = camera_frame<T>::look_at(convert<T>(eye), convert<T>(eye + vec3d{0, 0, -1}), {0, 1, 0});
         return orthographic_camera<T>(frame, T(far_view_height), width, height).primary_ray(col, row);
     }
-    auto frame = camera_frame<T>::look_at({0, T(camera_height), 0}, {0, T(0.35), -4}, {0, 1, 0});
+    const vec3d target{0, 0.35, -4};
+    const vec3d eye = turned_eye(view, {0, camera_height, 0}, target, {0, 1, 0});
+    auto frame = camera_frame<T>::look_at(convert<T>(eye), convert<T>(target), {0, 1, 0});
     return pinhole_camera<T>(frame, T(50), width, height).primary_ray(col, row);
+}
+
+// The chapter's own view.
+template <class T>
+ray<T> panel_ray(which_scene sc, int col, int row, int width, int height) {
+    return panel_ray<T>(sc, view_turn{}, col, row, width, height);
 }
 
 template <class T>
