@@ -192,6 +192,121 @@ class ProgramOutput(ToolTest):
         self.assertIn("28659", self.figures(["02"], False))
 
 
+class LinkRule(ToolTest):
+    """What a submission object may define (rtgrader/symbols.py, README "Linking"): its exercise's
+    functions; another strong definition is refused, naming the symbol demangled and the rule; a weak
+    copy of anything else (an inline function of common/ with another body) becomes the object's own:
+    linked after an instructor object carrying the same inline function, each keeps its own copy."""
+
+    EXERCISE = "_Z8exercisei"          # int exercise(int)
+    INLINE = """
+        namespace rt { struct options { int n = 0; ~options(); }; }
+        __attribute__((noinline)) inline int shared_inline(int x) { return x * 2; }   // an inline function of "common/"
+    """
+
+    def compile(self, name, text):
+        folder = os.path.join(config.work, "link-rule")
+        os.makedirs(folder, exist_ok=True)
+        src, obj = os.path.join(folder, name + ".cpp"), os.path.join(folder, name + ".o")
+        with open(src, "w") as f:
+            f.write(text)
+        subprocess.run(["c++", "-O2", "-c", src, "-o", obj], check=True)
+        with open(obj, "rb") as f:
+            return f.read(), obj
+
+    def confine(self, text):
+        from rtgrader import symbols
+        data, _ = self.compile("student", text)
+        return symbols.confine(data, {self.EXERCISE}, "unit_sphere.cpp")
+
+    def test_a_strong_helper_is_refused_by_name(self):
+        out, why = self.confine("int helper(int x) { return x; }\nint exercise(int x) { return helper(x); }\n")
+        self.assertIsNone(out)
+        self.assertIn("helper(int) (_Z6helperi)", why)
+        self.assertIn("internal linkage", why)
+        self.assertNotIn("exercise(int)", why)
+
+    def test_a_defined_front_end_is_refused(self):
+        out, why = self.confine("namespace rt { struct chapter_program; int run_chapter_program(int, char**, "
+                                "const chapter_program&) { return 0; } }\nint exercise(int x) { return x; }\n")
+        self.assertIsNone(out)
+        self.assertIn("rt::run_chapter_program(int, char**, rt::chapter_program const&)", why)
+
+    def test_static_helpers_and_the_exercise_pass_unchanged(self):
+        from rtgrader import symbols
+        text = "static int helper(int x) { return x; }\nnamespace { int other(int x) { return -x; } }\n" \
+               "int exercise(int x) { return helper(x) + other(x); }\n"
+        data, _ = self.compile("plain", text)
+        out, why = symbols.confine(data, {self.EXERCISE}, "unit_sphere.cpp")
+        self.assertEqual(why, "")
+        self.assertEqual(out, data)
+
+    def test_a_weak_copy_with_another_body_stays_the_submissions_own(self):
+        from rtgrader import symbols
+        student = self.INLINE.replace("x * 2", "x * 1000") + \
+            "__attribute__((noinline)) int call(int x) { return shared_inline(x); }\n" \
+            "int exercise(int x) { return shared_inline(x); }\n"
+        out, why = self.confine(student.replace("__attribute__((noinline)) int call", "static int call"))
+        self.assertEqual(why, "")
+        defined, _, signatures = symbols.read_symbols(out)
+        self.assertEqual(set(defined), {self.EXERCISE}, "the rewritten object defines more than its exercise")
+        self.assertFalse({s for s in signatures if "shared_inline" in s}, "a COMDAT group kept its signature")
+        # Linked first, before the instructor's object that carries the same inline function: the
+        # instructor's call still gets the instructor's body, and the student's its own.
+        folder = os.path.join(config.work, "link-rule")
+        with open(os.path.join(folder, "student-confined.o"), "wb") as f:
+            f.write(out)
+        _, teacher = self.compile("teacher", self.INLINE + """
+            #include <cstdio>
+            int exercise(int);
+            __attribute__((noinline)) int instructor(int x) { return shared_inline(x); }
+            int main() { std::printf("%d %d\\n", instructor(3), exercise(3)); }
+        """)
+        program = os.path.join(folder, "linked")
+        for student_object, expected in ((os.path.join(folder, "student-confined.o"), "6 3000"),):
+            subprocess.run(["c++", student_object, teacher, "-o", program], check=True)
+            self.assertEqual(subprocess.run([program], capture_output=True, text=True).stdout.strip(), expected)
+
+    def test_the_unconfined_weak_copy_would_replace_the_instructors(self):
+        """The mistake the rule prevents: the same objects linked as they are, the student's first."""
+        student = self.INLINE.replace("x * 2", "x * 1000") + "int exercise(int x) { return shared_inline(x); }\n"
+        _, raw = self.compile("student-raw", student)
+        _, teacher = self.compile("teacher-raw", self.INLINE + """
+            #include <cstdio>
+            int exercise(int);
+            __attribute__((noinline)) int instructor(int x) { return shared_inline(x); }
+            int main() { std::printf("%d %d\\n", instructor(3), exercise(3)); }
+        """)
+        program = os.path.join(config.work, "link-rule", "linked-raw")
+        subprocess.run(["c++", raw, teacher, "-o", program], check=True)
+        self.assertEqual(subprocess.run([program], capture_output=True, text=True).stdout.strip(), "3000 3000")
+
+
+class PictureView(ToolTest):
+    """The graded picture's view (rtgrader/picture.py): drawn from a fresh secret at every grading,
+    different for every chapter, within the documented turn, never the chapter's own view."""
+
+    def test_views_come_from_the_secret(self):
+        from rtgrader import picture
+        seen = set()
+        for _ in range(200):
+            secret = picture.draw_secret()
+            for cid in ("ch01", "ch02"):
+                yaw, pitch = picture.view_for(secret, cid)
+                self.assertTrue(picture.YAW_DEGREES[0] <= abs(yaw) <= picture.YAW_DEGREES[1], yaw)
+                self.assertTrue(picture.PITCH_DEGREES[0] <= pitch <= picture.PITCH_DEGREES[1], pitch)
+                seen.add((yaw, pitch))
+            self.assertEqual(picture.view_for(secret, "ch01"), picture.view_for(secret, "ch01"))
+        self.assertGreater(len(seen), 395, "views repeat across gradings")
+        self.assertTrue(any(y < 0 for y, _ in seen) and any(y > 0 for y, _ in seen))
+
+    def test_graded_size_is_half_the_reference(self):
+        from rtgrader import picture
+        reference = os.path.join(REPO, "chapters", "01-unit-sphere", "reference.png")
+        self.assertEqual(picture.png_size(reference), (400, 300))
+        self.assertEqual(picture.graded_size(reference), (200, 150))
+
+
 class JudgeLimits(ToolTest):
     """The judge runs as the grader's user (root) outside the sandbox and decodes what the student's
     runner sends: it is started with an address-space limit (judge.JUDGE_MEMORY_BYTES)."""

@@ -9,13 +9,14 @@ import queue
 import re
 import shutil
 import stat
+import subprocess
 import tempfile
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
-from . import fsutil, isolation, judge, manifest, sandbox, tree
+from . import fsutil, isolation, judge, manifest, picture, sandbox, tree
 from .sandbox import MiB, Limits
 
 MAX_SOURCE_BYTES = 1 * MiB
@@ -561,9 +562,22 @@ class Grader:
         finally:
             fsutil.remove_tree(scratch)   # nothing a run wrote stays for a later run (or chapter) to read
 
+    def _graded_view(self, ch):
+        """(view, size) of the picture graded for this chapter in this grading, or None for the chapter's
+        own view against its reference.png (a kit's preview: no solutions to draw another reference)."""
+        if not (self.tree.has_solutions and ch.get("solution_program")):
+            return None
+        if getattr(self._per, "secret_of", None) != self._per.work:    # a fresh secret for every grading
+            self._per.secret_of, self._per.secret = self._per.work, picture.draw_secret()
+        size = picture.graded_size(ch["reference"])
+        return (picture.view_for(self._per.secret, ch["id"]), size) if size else None
+
     def _render_in(self, ch, scratch, image, program, render_limits, logs, out_dir, user):
-        outcome = sandbox.run([program, "--out", image], limits=render_limits, log_path=os.path.join(logs, "render"),
-                              user=user, inputs=[program], scratch=scratch, private_root=self._per.work)
+        graded = self._graded_view(ch)
+        extra = picture.program_arguments(*graded) if graded else []
+        outcome = sandbox.run([program, "--out", image] + extra, limits=render_limits,
+                              log_path=os.path.join(logs, "render"), user=user, inputs=[program], scratch=scratch,
+                              private_root=self._per.work)
         said = self._program_said(ch, outcome.output)
         if outcome.returncode == 3:
             return False, f"the chapter program reached an exercise that is not implemented yet:\n{said}"
@@ -574,19 +588,54 @@ class Grader:
         actual = os.path.join(renders, f"{ch['id']}.png")
         diff = os.path.join(renders, f"{ch['id']}.diff.png")
         try:
-            picture = fsutil.read_regular(image, 64 * MiB)
+            picture_bytes = fsutil.read_regular(image, 64 * MiB)
         except (OSError, fsutil.Refused):
             return False, "the chapter program did not write its picture"
-        fsutil.write_new(renders, os.path.basename(actual), picture)
-        figures, matched, diff_png = self._imgcmp(ch, picture, logs, user)
+        fsutil.write_new(renders, os.path.basename(actual), picture_bytes)
+        if graded:
+            # Drawn only now, after the student's program ended: while it ran, this picture did not exist.
+            reference, why = self._draw_reference(ch, extra, render_limits)
+            if reference is None:
+                return False, f"the grader could not draw this chapter's reference picture ({why}): " \
+                              "tell your instructor; the render is not scored"
+            fsutil.write_new(renders, f"{ch['id']}.reference.png", reference)
+            seen = (f"seen from --view {picture.view_argument(graded[0])} at {graded[1][0]}x{graded[1][1]} "
+                    f"(a view drawn for this grading; {ch['id']}'s reference.png is the chapter's own view)")
+        else:
+            with open(ch["reference"], "rb") as f:
+                reference = f.read()
+            seen = ""
+        figures, matched, diff_png = self._imgcmp(ch, picture_bytes, reference, logs, user)
         figures = self._figures_shown(ch, figures)
         if diff_png:
             fsutil.write_new(renders, os.path.basename(diff), diff_png)
-        where = f"your render: {actual}" + (f"\ndifference image: {diff}" if diff_png else "")
+        where = (f"{seen}\n" if seen else "") + f"your render: {actual}" + \
+            (f"\ndifference image: {diff}" if diff_png else "")
         if matched:
             return True, f"the picture matches the reference within tolerance: {figures}\n{where}"
         return False, (f"the picture differs from the reference render beyond tolerance: {figures}\n{where}\n"
                        "Open the difference image to see where.")
+
+    def _draw_reference(self, ch, extra, render_limits):
+        """(PNG bytes, '') of the solutions' chapter program's picture with these options, or (None, why).
+        Instructor code only (built in the instructor tree, holding no submission code): run as the
+        grader, in a folder of its own."""
+        folder = tempfile.mkdtemp(prefix=f"reference-{ch['id']}-", dir=self._per.work)
+        out = os.path.join(folder, "reference.png")
+        try:
+            result = subprocess.run([ch["solution_program"], "--out", out] + extra, capture_output=True, text=True,
+                                    timeout=render_limits.wall_seconds, cwd=folder)
+            if result.returncode != 0:
+                return None, f"the solutions' program exited with status {result.returncode}: " + \
+                    trim(result.stderr or result.stdout, 300)
+            with open(out, "rb") as f:
+                return f.read(), ""
+        except subprocess.TimeoutExpired:
+            return None, f"the solutions' program took over {render_limits.wall_seconds:g} s"
+        except OSError as e:
+            return None, str(e)
+        finally:
+            shutil.rmtree(folder, ignore_errors=True)
 
     def _course_code_in(self, ch):
         """'' or the earlier chapters whose course code the chapter program holds. When grading with
@@ -616,18 +665,23 @@ class Grader:
                    "compare your render in your kit with imgcmp)"
         return figures
 
-    def _imgcmp(self, ch, picture, logs, user):
-        """imgcmp on the student's picture, as the sandbox user with limits (it
-        decodes a file the student made). Returns (figures, matched, diff bytes or None)."""
+    def _imgcmp(self, ch, picture_bytes, reference, logs, user):
+        """imgcmp on the student's picture against the reference (both bytes), as the sandbox user with
+        limits (it decodes a file the student made). Returns (figures, matched, diff bytes or None)."""
+        # The two pictures in a folder of the grader's (read-only for imgcmp: no process of the sandbox
+        # user can swap them), the difference image in a scratch folder of imgcmp's own.
+        pictures = os.path.join(self._per.work, f"imgcmp-in-{ch['id']}")
+        make_dir(pictures, None, 0o711)
+        fsutil.write_new(pictures, "render.png", picture_bytes, 0o644)
+        fsutil.write_new(pictures, "reference.png", reference, 0o644)
         scratch = os.path.join(self._per.work, f"imgcmp-{ch['id']}")
         make_dir(scratch, user, 0o700)
-        fsutil.write_new(scratch, "render.png", picture)
         imgcmp = os.path.join(self.tree.build, "bin", "imgcmp")
         limits = Limits(wall_seconds=60, cpu_seconds=60, memory_bytes=1024 * MiB, file_bytes=64 * MiB, processes=8)
-        outcome = sandbox.run([imgcmp, os.path.join(scratch, "render.png"), ch["reference"],
+        outcome = sandbox.run([imgcmp, os.path.join(pictures, "render.png"), os.path.join(pictures, "reference.png"),
                                "--diff", os.path.join(scratch, "diff.png")],
                               limits=limits, log_path=os.path.join(logs, "imgcmp"), user=user,
-                              inputs=[imgcmp, ch["reference"]], scratch=scratch, private_root=self._per.work)
+                              inputs=[imgcmp, pictures], scratch=scratch, private_root=self._per.work)
         figures = "\n".join(line for line in outcome.output.strip().splitlines()
                             if not line.startswith("difference image:"))
         try:
@@ -635,6 +689,7 @@ class Grader:
         except (OSError, fsutil.Refused):
             diff_png = None
         fsutil.remove_tree(scratch)
+        fsutil.remove_tree(pictures)
         if outcome.timed_out or outcome.returncode < 0:
             figures = f"imgcmp {sandbox.describe_ending(outcome, limits)} on this picture"
         return figures, outcome.returncode == 0 and not outcome.timed_out, diff_png

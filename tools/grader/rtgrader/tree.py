@@ -30,7 +30,7 @@ import subprocess
 import time
 from contextlib import contextmanager
 
-from . import fsutil, sandbox
+from . import fsutil, sandbox, symbols
 
 SKIP_AT_TOP = {".git", "out", "renders"}
 # What a preview writes at a kit's top (README's `--out preview.json`, its report and renders/): not part
@@ -272,6 +272,9 @@ class Tree:
             # Built once: the judges hold the tests and no student code.
             ch["judge_targets"] = [f"{ch['id']}_{kind}_judge" for kind in ("public", "hidden")
                                    if ch.get(f"{kind}_judge")]
+            # The solutions' chapter program draws the graded picture's reference (picture.py).
+            if ch.get("solution_program"):
+                ch["judge_targets"].append(f"{ch['id']}_solution_program")
             chapters[ch["id"]] = ch
         return chapters
 
@@ -298,16 +301,50 @@ class Tree:
     def chapters(self):
         return self.state["chapters"]
 
+    def exercise_symbols(self, ch):
+        """The mangled names of chapter ch's exercise functions (symbols.py): what its runner table
+        calls and its stubs (in a kit, its placeholders) define."""
+        cache = self.__dict__.setdefault("_exercise_symbols", {})
+        if ch["id"] not in cache:
+            tables = glob.glob(os.path.join(self.build, "**", f"{ch['id']}_runner_table.dir", "**",
+                                            f"{ch['id']}.cpp.o"), recursive=True)
+            if len(tables) != 1:
+                raise SystemExit(f"grader: the runner table object of {ch['id']} is not in {self.build}")
+            stubs = [os.path.join(self.stubs, ch["id"], ex + ".o") for ex in ch["compile"]]
+            cache[ch["id"]] = symbols.exercise_symbols(stubs, tables[0])
+        return cache[ch["id"]]
+
+    def confine_objects(self, objects):
+        """Each submission object checked against what it may define (symbols.py) before anything links
+        or runs. Returns ({chapter id: {ex: bytes to link}}, {chapter id: why it is refused})."""
+        confined, refused = {}, {}
+        for cid, files in objects.items():
+            allowed = self.exercise_symbols(self.chapters()[cid])
+            for ex, path in files.items():
+                with open(path, "rb") as f:
+                    data, why = symbols.confine(f.read(), allowed, ex)
+                if why:
+                    refused[cid] = why
+                    break
+                confined.setdefault(cid, {})[ex] = data
+        return confined, refused
+
     def link(self, objects, chapter_ids, log_dir):
         """Places each chapter's objects (the submission's, or the stubs') and
         links the executables of chapter_ids. Returns {chapter id: error text or ''}.
-        Call with the lock held."""
+        A submission object that defines more than its exercise's functions is refused
+        (its chapter then links the stubs, and its error says why); its weak copies of
+        anything else are made its own (symbols.py). Call with the lock held."""
+        confined, refused = self.confine_objects(objects)
         for ch in self.chapters().values():
             if not ch.get("built"):
                 continue
             for ex, c in ch["compile"].items():
-                mine = objects.get(ch["id"], {}).get(ex)
-                shutil.copyfile(mine or os.path.join(self.stubs, ch["id"], ex + ".o"), c["object"])
+                mine = confined.get(ch["id"], {}).get(ex) if ch["id"] not in refused else None
+                if mine is not None:
+                    fsutil.write_new(os.path.dirname(c["object"]), os.path.basename(c["object"]), mine, 0o600)
+                else:
+                    shutil.copyfile(os.path.join(self.stubs, ch["id"], ex + ".o"), c["object"])
                 # Ninja trusts an object whose time stamp is the one it recorded
                 # (a newer one would make it recompile the stub from source) ...
                 os.utime(c["object"], ns=(c["mtime_ns"], c["mtime_ns"]))
@@ -317,6 +354,9 @@ class Tree:
         errors = {}
         for cid in chapter_ids:
             ch = self.chapters()[cid]
+            if cid in refused:
+                errors[cid] = refused[cid]
+                continue
             result = subprocess.run(["ninja", "-C", self.build, "-j2"] + ch["targets"],
                                     capture_output=True, text=True)
             errors[cid] = "" if result.returncode == 0 else (result.stdout + result.stderr)
