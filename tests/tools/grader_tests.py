@@ -232,6 +232,12 @@ class LinkRule(ToolTest):
         self.assertIsNone(out)
         self.assertIn("rt::run_chapter_program(int, char**, rt::chapter_program const&)", why)
 
+    def test_an_old_style_comdat_section_is_refused(self):
+        out, why = self.confine('asm(".section .gnu.linkonce.t.foo,\\"ax\\",@progbits\\n.byte 0xc3\\n.previous");\n'
+                                "int exercise(int x) { return x; }\n")
+        self.assertIsNone(out)
+        self.assertIn(".gnu.linkonce", why)
+
     def test_static_helpers_and_the_exercise_pass_unchanged(self):
         from rtgrader import symbols
         text = "static int helper(int x) { return x; }\nnamespace { int other(int x) { return -x; } }\n" \

@@ -87,6 +87,16 @@ def read_symbols(data):
                 if st_name >= len(names) or end < 0:
                     raise Unreadable("a symbol's name lies outside its string table")
                 entries.append((names[st_name:end].decode("latin-1"), st_info >> 4, st_info & 0xF, st_shndx))
+        # Old-style COMDAT: the linker keeps the first .gnu.linkonce.* section of a name and matches
+        # it against COMDAT groups of the same name, so it could drop an instructor's copy. The
+        # compiler never writes them on this platform: refused.
+        shstrndx = struct.unpack_from("<H", data, 0x3E)[0]
+        if shstrndx < len(sections):
+            at, size = sections[shstrndx][4], sections[shstrndx][5]
+            section_names = data[at:at + size]
+            for s in sections:
+                if section_names[s[0]:s[0] + 14] == b".gnu.linkonce.":
+                    raise Unreadable("it has a .gnu.linkonce section (an old-style COMDAT the compiler does not make)")
         for s in sections:
             if s[1] == SHT_GROUP:
                 if not tables or s[6] != tables[0] or s[7] >= len(entries):
