@@ -11,10 +11,10 @@ the one the linker keeps whenever the student's object comes first.
 The rule, checked on the object's own symbol table before anything links or runs:
 
   * its exercise's functions may be defined, strong or weak, and stay global:
-    the symbols the chapter's runner table references as undefined (the table
-    calls every exercise function and nothing else of the chapter) that the
-    instructor's own compile of the chapter's exercise files (the stubs, or in a
-    kit the placeholders) defines;
+    the symbols the chapter's runner table (which calls every exercise
+    function) or its program (chapter 07's also calls the long double
+    instance) references as undefined that the instructor's own compile of the
+    chapter's exercise files (the stubs, or in a kit the placeholders) defines;
   * any other strong definition (a function, a variable, an absolute or common
     symbol, an ifunc) is refused, naming the symbol demangled and the rule;
   * any other weak or unique definition (inline functions, template instances,
@@ -122,16 +122,24 @@ def read_object(path):
         return f.read()
 
 
-def exercise_symbols(stub_objects, runner_table_object):
-    """The mangled names of a chapter's exercise functions: what the runner table calls
-    (undefined there) and the instructor's compile of the exercise files defines."""
-    called = read_symbols(read_object(runner_table_object))[1]
+_undefined_in = {}     # instructor object -> its undefined symbols (read once per process)
+
+
+def exercise_symbols(stub_objects, user_objects):
+    """The mangled names of a chapter's exercise functions: what the instructor's objects that call
+    them (the runner table, the chapter program's) leave undefined and the instructor's compile of
+    the exercise files defines."""
+    called = set()
+    for path in user_objects:
+        if path not in _undefined_in:
+            _undefined_in[path] = read_symbols(read_object(path))[1]
+        called |= _undefined_in[path]
     defined = set()
     for path in stub_objects:
         defined |= set(read_symbols(read_object(path))[0])
     found = called & defined
     if not found:
-        raise SystemExit(f"grader: no exercise function found in {runner_table_object} and {stub_objects}")
+        raise SystemExit(f"grader: no exercise function found in {user_objects} and {stub_objects}")
     return found
 
 

@@ -302,16 +302,25 @@ class Tree:
         return self.state["chapters"]
 
     def exercise_symbols(self, ch):
-        """The mangled names of chapter ch's exercise functions (symbols.py): what its runner table
-        calls and its stubs (in a kit, its placeholders) define."""
+        """The mangled names of chapter ch's exercise functions (symbols.py): what the instructor's
+        objects linked with submission code (the runner tables, the chapter programs) call and the
+        chapter's stubs (in a kit, its placeholders) define."""
         cache = self.__dict__.setdefault("_exercise_symbols", {})
+        if "users" not in cache:
+            users = {}
+            for dirpath, dirnames, filenames in os.walk(self.build):
+                target = os.path.basename(dirpath)
+                if re.fullmatch(r"ch\d\d_(runner_table|program_objects)\.dir", target):
+                    users[target[:4]] = users.get(target[:4], []) + [
+                        os.path.join(d, f) for d, _, fs in os.walk(dirpath) for f in fs if f.endswith(".o")]
+                    dirnames[:] = []
+            cache["users"] = users
         if ch["id"] not in cache:
-            tables = glob.glob(os.path.join(self.build, "**", f"{ch['id']}_runner_table.dir", "**",
-                                            f"{ch['id']}.cpp.o"), recursive=True)
-            if len(tables) != 1:
-                raise SystemExit(f"grader: the runner table object of {ch['id']} is not in {self.build}")
+            users = cache["users"]
+            if not users.get(ch["id"]):
+                raise SystemExit(f"grader: the runner table and program objects of {ch['id']} are not in {self.build}")
             stubs = [os.path.join(self.stubs, ch["id"], ex + ".o") for ex in ch["compile"]]
-            cache[ch["id"]] = symbols.exercise_symbols(stubs, tables[0])
+            cache[ch["id"]] = symbols.exercise_symbols(stubs, sorted(p for found in users.values() for p in found))
         return cache[ch["id"]]
 
     def confine_objects(self, objects):
