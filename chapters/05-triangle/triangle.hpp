@@ -56,8 +56,9 @@ vec3<T> barycentric(const triangle<T>& tri, const vec3<T>& p);
 // gives the same answers as the same triangle at unit size: scale the edges
 // by a power of two before multiplying them (README, "Very small and very
 // large triangles"). A direction with tiny, even subnormal, components is
-// not zero: the reference solution scales it the same way before taking
-// d.n (t scales back exactly); the tests do not ask it.
+// not zero: scale it the same way before taking d.n (t scales back
+// exactly). The tests ask it: a triangle of subnormal size hit by a ray whose
+// direction is as small must give the same t as at unit size.
 template <class T>
 std::optional<hit_record<T>> intersect_triangle(const triangle<T>& tri, const ray<T>& r, const interval<T>& range);
 

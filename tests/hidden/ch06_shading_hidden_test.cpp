@@ -285,10 +285,21 @@ TEST_CASE_TEMPLATE("hidden: the shadow ray origin lies on the light side", T, RT
         const vec3<T> p = rnd.direction(T(1e-2), T(1e4)), n = rnd.direction(), to_light = rnd.direction();
         const vec3<T> o = ch06::shadow_ray_origin(p, n, to_light);
         const ld moved = ld_dot(o - p, n);
-        ok = is_finite(o) && (dot(n, to_light) > T(0) ? moved > 0 : moved < 0);
+        ok = is_finite(o) && (dot(n, to_light) >= T(0) ? moved > 0 : moved < 0);
+    }
+    // A light exactly in the tangent plane (dot(normal, to_light) = 0, or -0): the header's rule says
+    // s = +1, along +normal.
+    bool tangent_ok = true;
+    const vec3<T> n{T(0), T(3), T(4)};
+    for (const vec3<T>& l : {vec3<T>(1, 0, 0), vec3<T>(-1, 0, 0), vec3<T>(0, 4, -3), vec3<T>(5, -8, 6)}) {
+        const vec3<T> p{T(2), T(-3), T(0.5)};
+        const vec3<T> o = ch06::shadow_ray_origin(p, n, l);
+        tangent_ok = tangent_ok && is_finite(o) && ld_dot(o - p, n) > 0;
     }
     CHECK_MESSAGE(ok, "the shadow ray's origin moves off the surface towards the side the light is on "
                       "(along +normal or -normal)");
+    CHECK_MESSAGE(tangent_ok, "a light exactly in the surface's tangent plane (dot(normal, to_light) = 0) counts "
+                              "as on the normal's side: s = +1");
 }
 
 TEST_CASE_TEMPLATE("hidden: the shadow ray origin moves along the normal only", T, RT_SCALARS) {

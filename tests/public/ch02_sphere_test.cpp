@@ -52,7 +52,12 @@ std::string diagnosis() {
         if (!close(wide, T(3)))
             return " [A sphere of radius 2 is hit as if its radius were " +
                    std::string(close(wide, T(4)) ? "1" : "wrong") + ": c = oc . oc - R^2 (R squared).]";
-        if (!close(t_of({{0, 0, 0}, T(1)}, {{0, 0, 5}, {0, 0, -2}}), T(2)))
+        // Direction (0,0,-2): a = d . d = 4, the near root is t = 2.
+        const T doubled = t_of({{0, 0, 0}, T(1)}, {{0, 0, 5}, {0, 0, -2}});
+        if (close(doubled, T(8)))
+            return " [With direction (0,0,-2), a = d . d = 4, your t is 8, a times the right t = 2: the roots are "
+                   "(-h -+ sqrt(h^2 - a c)) / a, divided by a.]";
+        if (!close(doubled, T(2)))
             return " [With direction (0,0,-2) the hit must come at t = 2: keep a = d . d in the quadratic, do "
                    "not assume a unit direction.]";
     }
@@ -132,7 +137,7 @@ TEST_CASE_TEMPLATE("a non-unit direction scales t but not the hit point", T, RT_
                     "the direction's length does not change which points the ray visits; got a miss" << diagnosis<T>());
     CHECK_MESSAGE(close(hit->t, T(1.5)),
                   "with direction (0,0,-4) the hit point (1,2,-1) is reached at t = 1.5 (the direction is not "
-                  "unit length here: a = d . d = 16 stays in the quadratic). Got "
+                  "unit length here: a = d . d = 16 stays in the quadratic and divides its roots). Got "
                       << describe_hit(hit) << diagnosis<T>());
     CHECK_MESSAGE(close(hit->point, vec3<T>(1, 2, -1)),
                   "whatever the direction's length, the ray meets the sphere at (1,2,-1); got " << describe_hit(hit) << diagnosis<T>());

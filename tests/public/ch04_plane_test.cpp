@@ -31,9 +31,18 @@ TEST_CASE_TEMPLATE("a ray straight down onto the ground hits it", T, RT_SCALARS)
     // From height 3 straight down: t = (p0 - o).n / (d.n) = (0 - 3) / (-1) = 3.
     ray<T> r{{1, 3, 2}, {0, -1, 0}};
     auto hit = intersect_plane(ground<T>(), r, everything_ahead<T>());
-    // A miss here is most often a sign error: ask again with the whole line as the range.
-    auto anywhere = intersect_plane(ground<T>(), r, interval<T>{-infinity<T>, infinity<T>});
-    CHECK_MESSAGE(!(anywhere && close(anywhere->t, T(-3))),
+    // A miss here is most often a sign error: ask again with the whole line as the range, and ask a ray
+    // from below too (d . n > 0): a flipped numerator flips both, |d . n| only this one.
+    const interval<T> whole_line{-infinity<T>, infinity<T>};
+    auto anywhere = intersect_plane(ground<T>(), r, whole_line);
+    auto from_below = intersect_plane(ground<T>(), ray<T>{{1, -2, 2}, {0, 1, 0}}, whole_line);
+    const bool flipped = anywhere && close(anywhere->t, T(-3));
+    const bool below_right = from_below && close(from_below->t, T(2));
+    CHECK_MESSAGE(!(flipped && below_right),
+                  "t came out as -3 for this ray from above (d . n = -1), but right (t = 2) for a ray from below "
+                  "(d . n = +1): the denominator lost its sign. t = (p0 - o) . n / (d . n) needs d . n with its "
+                  "sign; dividing by |d . n| (std::abs) flips t whenever the ray travels against the normal");
+    CHECK_MESSAGE(!(flipped && !below_right),
                   "t came out as -3: the sign is flipped. The numerator is (p0 - o) . n, from the ray's origin to "
                   "the plane, not (o - p0) . n; with it a plane ahead of the ray gets a positive t");
     REQUIRE_MESSAGE(hit.has_value(), "a ray pointing straight at the plane must hit it; got a miss");

@@ -38,9 +38,23 @@ ray<T> down_onto(T x, T y) {
 
 TEST_CASE_TEMPLATE("a ray through the inside of the triangle hits it", T, RT_SCALARS) {
     auto hit = intersect_triangle(corner_triangle<T>(), down_onto(T(0.5), T(0.5)), everything_ahead<T>());
+    // On a miss, find out which edge test is at fault: a ray just past an edge that comes back as a hit
+    // means that edge's test accepts its outer side.
+    std::string which_edge;
+    if (!hit) {
+        const char* edges[] = {"a -> b", "b -> c", "c -> a"};
+        const T past[][2] = {{1, T(-0.5)}, {T(1.5), T(1.5)}, {T(-0.5), 1}};
+        const char* past_names[] = {"(1, -0.5, 0)", "(1.5, 1.5, 0)", "(-0.5, 1, 0)"};
+        for (int e = 0; e < 3; ++e)
+            if (intersect_triangle(corner_triangle<T>(), down_onto(past[e][0], past[e][1]), everything_ahead<T>()))
+                which_edge += std::string(" The ray onto ") + past_names[e] + ", OUTSIDE edge " + edges[e] + ", is a hit: that edge's half-plane test is "
+                              "reversed (its inequality, or the order of its cross product), so it keeps the outer "
+                              "side and rejects the inner one.";
+    }
     REQUIRE_MESSAGE(hit.has_value(),
                     "(0.5, 0.5, 0) is inside the triangle: the plane hit is on the inner side of all three "
-                    "edges, so it is a hit; got a miss");
+                    "edges, so it is a hit; got a miss."
+                        << which_edge);
     CHECK_MESSAGE(close(hit->t, T(3)), "the ray falls from z = 3 onto the plane z = 0: t = 3; got "
                                            << describe_hit(hit));
     CHECK_MESSAGE((close(hit->point.x, T(0.5)) && close(hit->point.y, T(0.5)) && close(hit->point.z, T(0), T(1))),
