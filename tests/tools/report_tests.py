@@ -1,10 +1,16 @@
 #!/usr/bin/env python3
 """Tests of the pages the grader writes (ctest -L grader; see tests/tools/CMakeLists.txt).
 
-  report_tests.py --work DIR ReportPage        report.html from made-up results: only what a student sees
-  report_tests.py --work DIR Browser           report.html and dashboard.html in headless Chromium
+  report_tests.py --work DIR ReportPage        report.html from made-up results: only what a student sees;
+                                               results.json's Markdown tables
+  report_tests.py --work DIR --program CHAPTER_PROGRAM Browser
+                                               that page and a chapter program's --compare page in headless
+                                               Chromium (exit 77, ctest's skip, without chromium)
   report_tests.py --work DIR --build-dir TREE Dashboard
-                                               grade-batch on a class of made-up submissions
+                                               grade-batch on a class of made-up submissions: dashboard.html,
+                                               its JSON and CSV
+  report_tests.py --work DIR DashboardBrowser.test_dashboard_page DashboardBrowser.test_a_students_report_page
+                                               the class's dashboard and one student's report in Chromium
 
 ReportPage and Browser need no grading: they build the pages from results data made here
 (results.json's schema, PNG pictures written by png() below), so every case is known.
