@@ -1,4 +1,5 @@
-// Hidden tests for chapter 07 (run by the autograder only).
+// Hidden tests for chapter 07, step 6: the whole robust test (run by the autograder only; steps 1 to 5 on
+// their own are in ch07_steps_hidden_test.cpp).
 //
 // Stiff cases in families, each generated from a fixed seed, in both
 // precisions. The reference for every case is computed in long double from
