@@ -1,5 +1,6 @@
-# rt_chapter_judge(): the chapter's judges and runner, for the autograder (tools/grader/README.md,
-# "Who decides pass or fail"). Called by rt_chapter() for every chapter that has an RPC table
+# rt_chapter_judge(): the chapter's judges and runner, for the autograder (tests/support/rpc/README.md
+# follows one call through them; tools/grader/README.md, "Who decides pass or fail", says why).
+# Called by rt_chapter() for every chapter that has an RPC table
 # tests/support/rpc/chNN.cpp; it makes
 #   chNN_runner          the chapter's exercise code (chNN_exercises: the student's in the grader's tree)
 #                        and nothing else: it answers calls on a socket
@@ -8,7 +9,8 @@
 # and writes rt_judges/chNN.json (their paths) for the grader.
 #
 # Adding a chapter: write tests/support/rpc/chNN.cpp (one RT_RPC_FUNCTION line and one forwarding stub
-# per exercise function; a new struct in its arguments needs a fields() overload, see wire.hpp).
+# per exercise function; a new struct in its arguments needs a fields() overload, see wire.hpp; an
+# object callback goes through RT_RPC_FORWARD_SERVED; tests/support/rpc/README.md, "Adding a chapter").
 # Off by default in the sanitizer build and in a student's build (the kit): the grader configures its
 # own tree with RT_JUDGE=ON, and there the judges would only compile the tests once more.
 if(RT_SANITIZE OR RT_SIDE STREQUAL "student")

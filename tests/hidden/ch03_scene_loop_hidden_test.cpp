@@ -32,8 +32,9 @@ T never() {
 // Object i is met at walls[i]; its record's normal is (tags[i], 0, 1). A
 // served callback (tests/support/rpc/served.hpp): the judge answers each call
 // of the runner with the walls' own test. A call about an object outside
-// 0 .. n-1, beyond a budget, or other than the expected next one is answered
-// with a fault record (a hit nearer than any), found in the answer by fault_in().
+// 0 .. n-1, beyond a budget, or other than the expected next one is kept in
+// the judge's record of the calls, and closest_hit then fails with
+// rt::test::broken_rule whatever it returns (call_with_rules reads it).
 template <class T>
 rt::test::served_objects<T> walls_at(const std::vector<T>& walls, const std::vector<int>& tags) {
     rt::test::served_objects<T> served;
@@ -188,14 +189,15 @@ TEST_CASE_TEMPLATE("objects at or before tmin are not hit", T, RT_SCALARS) {
 }
 
 TEST_CASE_TEMPLATE("no objects means a miss without asking anything", T, RT_SCALARS) {
-    // No call allowed: a call is answered with a fault record, a hit.
+    // No call allowed: the record of the calls says whether one was made.
     auto counting = walls_at(std::vector<T>{});
     counting.budget = 0;
-    const auto empty = closest_hit<T>(0, counting, forward<T>(), ahead<T>());
-    const auto negative = closest_hit<T>(-3, counting, forward<T>(), ahead<T>());
-    const bool empty_miss = !empty.has_value();
-    const bool negative_miss = !negative.has_value();
-    const bool nothing_asked = !rt::test::fault_in(empty) && !rt::test::fault_in(negative);
+    const auto empty = rt::test::call_with_rules<T>([&] { return closest_hit<T>(0, counting, forward<T>(), ahead<T>()); });
+    const auto negative =
+        rt::test::call_with_rules<T>([&] { return closest_hit<T>(-3, counting, forward<T>(), ahead<T>()); });
+    const bool empty_miss = !empty.answer.has_value();
+    const bool negative_miss = !negative.answer.has_value();
+    const bool nothing_asked = !empty.broken && !negative.broken;
     CHECK_MESSAGE(empty_miss, "an empty scene is a miss");
     CHECK_MESSAGE(negative_miss, "a negative object count is an empty scene: a miss");
     CHECK_MESSAGE(nothing_asked, "with no objects the intersector is never called");
@@ -208,8 +210,10 @@ TEST_CASE_TEMPLATE("each object is tested with tmax shrunk to the closest hit so
         const int n = 1 + trial % 9;
         const std::vector<T> walls = random_walls<T>(rng, n, T(0.1), T(40), 0.25);
         const interval<T> start{T(trial % 3 == 0 ? 0.0 : 0.5), trial % 2 == 0 ? infinity<T> : T(30)};
-        const auto hit = closest_hit<T>(n, walls_checking_calls(walls, start), forward<T>(), start);
-        if (const auto fault = rt::test::fault_in(hit)) {
+        const auto checked = rt::test::call_with_rules<T>(
+            [&] { return closest_hit<T>(n, walls_checking_calls(walls, start), forward<T>(), start); });
+        const auto& hit = checked.answer;
+        if (const auto& fault = checked.broken) {
             // The first call that broke the order, or asked about another range.
             if (fault->call >= n || fault->object != fault->call) each_once = false;
             else ranges_ok = false;
@@ -302,10 +306,10 @@ TEST_CASE_TEMPLATE("a range reaching behind the origin returns the smallest t", 
 TEST_CASE_TEMPLATE("the ray is passed on unchanged", T, RT_SCALARS) {
     const ray<T> r{{T(1.5), T(-2), T(3)}, {T(0.25), T(0.5), T(-4)}};
     // Walls the ray never meets, asked about r alone: a call about another ray
-    // is answered with a fault record.
+    // breaks the test's rule.
     auto checking = walls_at(std::vector<T>(3, never<T>()));
     checking.only_ray = r;
-    const bool same = !rt::test::fault_in(closest_hit<T>(3, checking, r, ahead<T>()));
+    const bool same = !rt::test::call_with_rules<T>([&] { return closest_hit<T>(3, checking, r, ahead<T>()); }).broken;
     CHECK_MESSAGE(same, "every object is asked about the caller's ray itself");
 }
 

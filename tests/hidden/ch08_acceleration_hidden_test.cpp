@@ -378,12 +378,15 @@ TEST_CASE_TEMPLATE("hidden: traversal: an empty scene and a single object", T, R
     const ray<T> r{{0, 0, 0}, {0, 0, -1}};
     const bvh<T> empty_median = build_median(none.boxes());
     const bvh<T> empty_sah = build_sah_bounded(none.boxes());
-    // A budget of no calls: an ask is answered with a fault record, a hit.
-    const auto median_hit = closest_hit(empty_median, none.intersector(0), r, {T(0), infinity<T>});
-    const auto sah_hit = closest_hit(empty_sah, none.intersector(0), r, {T(0), infinity<T>});
-    const bool any = any_hit(empty_sah, none.intersector(0), r, {T(0), infinity<T>});
-    const bool empty_miss = !median_hit && !sah_hit && !any;
-    const bool none_asked = !rt::test::fault_in(median_hit) && !rt::test::fault_in(sah_hit) && !any;
+    // A budget of no calls: the record of the calls says whether one was made.
+    const auto everything = interval<T>{T(0), infinity<T>};
+    const auto median_hit =
+        rt::test::call_with_rules<T>([&] { return closest_hit(empty_median, none.intersector(0), r, everything); });
+    const auto sah_hit =
+        rt::test::call_with_rules<T>([&] { return closest_hit(empty_sah, none.intersector(0), r, everything); });
+    const auto any = rt::test::call_with_rules<T>([&] { return any_hit(empty_sah, none.intersector(0), r, everything); });
+    const bool empty_miss = !median_hit.answer && !sah_hit.answer && !any.answer;
+    const bool none_asked = !median_hit.broken && !sah_hit.broken && !any.broken;
     CHECK_MESSAGE(empty_miss, "an empty tree is a miss");
     CHECK_MESSAGE(none_asked, "an empty tree never calls intersect");
     CHECK_MESSAGE((empty_sah.nodes.empty() && empty_sah.order.empty()), "the SAH build of no objects is an empty tree");
@@ -437,10 +440,11 @@ TEST_CASE_TEMPLATE("hidden: traversal: nearer children first, and boxes beyond t
     for (const bvh<T>& tree : {build_median(scene.boxes(), one), build_sah_bounded(scene.boxes(), one)})
         for (T dir : {T(-1), T(1)}) {
             const ray<T> r{{T(0.3), T(0.1), dir < 0 ? T(0) : T(-170)}, {0, 0, dir}};
-            // A 7th ask is answered with a fault record, a hit nearer than any.
-            const auto got = closest_hit(tree, scene.intersector(6), r, {T(0), infinity<T>});
-            if (rt::test::fault_in(got)) few = false;
-            else right = same_answer(got, brute_force(scene, r, {T(0), infinity<T>})) && right;
+            // A 7th ask breaks the test's budget: the record of the asks keeps it.
+            const auto got = rt::test::call_with_rules<T>(
+                [&] { return closest_hit(tree, scene.intersector(6), r, {T(0), infinity<T>}); });
+            if (got.broken) few = false;
+            else right = same_answer(got.answer, brute_force(scene, r, {T(0), infinity<T>})) && right;
         }
     CHECK_MESSAGE(right, "along a row of spheres the nearest one is the answer");
     CHECK_MESSAGE(few, "the traversal asked far more objects than needed: visit the nearer child first, and skip a "

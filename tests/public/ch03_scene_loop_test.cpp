@@ -28,9 +28,9 @@ namespace {
 // grader, each call your loop makes is answered by the grader's own process,
 // with the same walls. The test's rules for the calls go with it:
 // `budget` limits how many calls there may be, `expected` lists the calls
-// in the order they must come. A call that breaks a rule is answered with a
-// fault record, a hit nearer than any other, which rt::test::fault_in()
-// recognises in your answer.
+// in the order they must come. The grader keeps a record of the calls; when
+// one breaks a rule, closest_hit fails with rt::test::broken_rule (saying
+// which call, and what it asked), whatever it returns.
 template <class T>
 rt::test::served_objects<T> walls_at(const std::vector<T>& walls) {
     rt::test::served_objects<T> served;
@@ -201,29 +201,29 @@ TEST_CASE_TEMPLATE("nothing before tmin is hit", T, RT_SCALARS) {
 }
 
 TEST_CASE_TEMPLATE("an empty scene is a miss", T, RT_SCALARS) {
-    // No call allowed: a call is answered with a fault record, a hit.
+    // No call allowed: the record of the calls says whether one was made.
     auto nothing = walls_at(std::vector<T>{});
     nothing.budget = 0;
-    auto hit = closest_hit<T>(0, nothing, straight_ahead<T>(), everything_ahead<T>());
-    CHECK_MESSAGE(!rt::test::fault_in(hit), "with object_count = 0 there is no object to ask; the intersector was "
-                                            "called");
-    CHECK_MESSAGE(!hit.has_value(), "with no objects there is nothing to hit; got " << describe(hit));
+    const auto got = rt::test::call_with_rules<T>(
+        [&] { return closest_hit<T>(0, nothing, straight_ahead<T>(), everything_ahead<T>()); });
+    CHECK_MESSAGE(!got.broken, "with object_count = 0 there is no object to ask; the intersector was called");
+    CHECK_MESSAGE(!got.answer.has_value(), "with no objects there is nothing to hit; got " << describe(got.answer));
 }
 
 TEST_CASE_TEMPLATE("each hit shrinks tmax for the objects after it", T, RT_SCALARS) {
     // The calls must be object 0, 1, 2, 3 in this order, each with the
-    // caller's tmin and tmax shrunk to the closest t so far; the first call
-    // that differs, and every one after it, is answered with a fault record.
+    // caller's tmin and tmax shrunk to the closest t so far; the record of
+    // the calls keeps the first one that differs.
     const std::vector<T> walls{T(5), T(2), T(8), T(1)};
     const interval<T> start{T(0.25), T(100)};
     const auto expected = loop_calls(walls, start);
     auto checking = walls_at(walls);
     checking.check_calls = true;
     checking.expected = expected;
-    auto hit = closest_hit<T>(4, checking, straight_ahead<T>(), start);
-    REQUIRE_MESSAGE(hit.has_value(), "every object is hit in (0.25, 100) (" << list(walls) << "); got a miss");
-    if (const auto fault = rt::test::fault_in(hit)) {
-        const int k = fault->call;
+    const auto got =
+        rt::test::call_with_rules<T>([&] { return closest_hit<T>(4, checking, straight_ahead<T>(), start); });
+    if (const auto& fault = got.broken) {
+        const int k = int(fault->call);
         const bool in_order = k >= 0 && k < 4 && fault->object == k;
         CHECK_MESSAGE(in_order, "test every object exactly once, in order 0, 1, 2, 3; call "
                                     << k + 1 << " asked object " << fault->object);
@@ -238,6 +238,8 @@ TEST_CASE_TEMPLATE("each hit shrinks tmax for the objects after it", T, RT_SCALA
         }
         return;
     }
+    const auto& hit = got.answer;
+    REQUIRE_MESSAGE(hit.has_value(), "every object is hit in (0.25, 100) (" << list(walls) << "); got a miss");
     CHECK_MESSAGE((close(hit->t, T(1)) && hit->object == 3),
                   "the nearest is t = 1 on object 3; got " << describe(hit) << diagnosis(hit, walls, start));
     CHECK_MESSAGE(hit->normal.x == T(3), "test every object exactly once, in order 0, 1, 2, 3: the answer is not "

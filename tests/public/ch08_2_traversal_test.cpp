@@ -47,12 +47,14 @@ TEST_CASE_TEMPLATE("traversal: an empty tree is a miss, and no object is asked",
     const objects<T> scene;
     const bvh<T> tree = build_median(scene.boxes());
     const ray<T> r{{0, 0, 0}, {0, 0, -1}};
-    // A budget of no calls: asking anything is answered with a fault record, which comes back as a hit.
-    const auto got = closest_hit(tree, scene.intersector(0), r, rt::test::everything_ahead<T>());
-    CHECK_MESSAGE(!rt::test::fault_in(got), "with no objects, intersect must never be called (there is no index to "
-                                            "give it)");
-    CHECK_MESSAGE(!got, "a tree of no objects has no nodes (tree.nodes is empty): nothing can be hit");
-    CHECK_MESSAGE(!any_hit(tree, scene.intersector(0), r, rt::test::everything_ahead<T>()),
+    // A budget of no calls: the record of the calls says whether one was made.
+    const auto got = rt::test::call_with_rules<T>(
+        [&] { return closest_hit(tree, scene.intersector(0), r, rt::test::everything_ahead<T>()); });
+    CHECK_MESSAGE(!got.broken, "with no objects, intersect must never be called (there is no index to give it)");
+    CHECK_MESSAGE(!got.answer, "a tree of no objects has no nodes (tree.nodes is empty): nothing can be hit");
+    const auto any = rt::test::call_with_rules<T>(
+        [&] { return any_hit(tree, scene.intersector(0), r, rt::test::everything_ahead<T>()); });
+    CHECK_MESSAGE((!any.answer && !any.broken),
                   "any_hit on an empty tree: nothing can be hit, and intersect must never be called");
 }
 
@@ -127,15 +129,17 @@ TEST_CASE_TEMPLATE("traversal: nearest child first, and boxes beyond the closest
     one_per_leaf.max_leaf_size = 1;
     const bvh<T> tree = build_median(scene.boxes(), one_per_leaf);
     const ray<T> r{{0, T(0.25), 0}, {1, 0, 0}};
-    // At most 3 objects may be asked: a 4th ask is answered with a fault record (a hit nearer than any).
-    const auto got = closest_hit(tree, scene.intersector(3), r, rt::test::everything_ahead<T>());
+    // At most 3 objects may be asked: the record of the calls keeps a 4th.
+    const auto checked = rt::test::call_with_rules<T>(
+        [&] { return closest_hit(tree, scene.intersector(3), r, rt::test::everything_ahead<T>()); });
+    CHECK_MESSAGE(!checked.broken, "the traversal asked more than 3 of the 32 spheres; nearest first, it needs 1 (or 2 "
+                                   "or 3 where boxes touch). Visit the child with the smaller entry first (push the "
+                                   "farther one first), and when you pop a node whose entry lies beyond the closest "
+                                   "hit so far (entry > widen_exit(best t)), skip it");
+    if (checked.broken) return;
+    const auto& got = checked.answer;
     REQUIRE_MESSAGE(got.has_value(), "the ray along the row hits every sphere");
-    const auto fault = rt::test::fault_in(got);
-    CHECK_MESSAGE(!fault, "the traversal asked more than 3 of the 32 spheres; nearest first, it needs 1 (or 2 or 3 "
-                          "where boxes touch). Visit the child with the smaller entry first (push the farther one "
-                          "first), and when you pop a node whose entry lies beyond the closest hit so far (entry > "
-                          "widen_exit(best t)), skip it");
-    if (!fault) CHECK_MESSAGE(got->object == 0, "the nearest sphere is object 0; got " << object_of(got));
+    CHECK_MESSAGE(got->object == 0, "the nearest sphere is object 0; got " << object_of(got));
 }
 
 TEST_CASE_TEMPLATE("traversal: equal t: the lowest object index wins, whatever order the tree visits", T, RT_SCALARS) {

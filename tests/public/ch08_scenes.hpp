@@ -56,9 +56,9 @@ struct objects {
     // The same in the form the tree asks it (leaf_intersector). It is a served
     // callback (tests/support/rpc/served.hpp): under the grader the grader's
     // own process answers each object your traversal asks about, with the
-    // same test. `budget` limits how many objects one call may ask:
-    // an ask beyond it is answered with a fault record, a hit nearer than any
-    // other, which fault_in() recognises in the traversal's answer.
+    // same test. `budget` limits how many objects one call may ask: the
+    // grader keeps a record of the asks, and one beyond the budget makes the
+    // traversal fail with rt::test::broken_rule, whatever it returns.
     leaf_intersector<T> intersector(long budget = -1) const { return served(budget); }
 
     // The same callback in chapter 03's form (object_intersector), for brute force.

@@ -23,7 +23,7 @@ import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools", "grader"))
 sys.dont_write_bytecode = True
-from tooltest import FIXTURES, add_fixture_tests, fixture_files, fixture_source, GRADE, REPO, ROOT, ToolTest, config, grade, main, make_submission, solution_folder, total_score
+from tooltest import FIXTURES, add_fixture_tests, fixture_files, fixture_source, GRADE, REPO, ROOT, ToolTest, config, grade, main, make_submission, matches, solution_folder, total_score
 
 PREPARE_TIME_LIMIT = 850          # seconds: the first build of the grading tree (ctest gives 900)
 # A correct test case ends in milliseconds, but on a machine shared with builds (load 20-40) the
@@ -123,12 +123,18 @@ class Adversarial(ToolTest):
             with open(out) as f:
                 self.assertNotIn(forbidden, f.read(), "results.json shows what it must not")
         hidden_forbidden = expect.get("forbidden_in_hidden")
+        public_forbidden = expect.get("forbidden_in_public_tests")
         if hidden_forbidden:
             for t in data["tests"]:
                 if t["tags"][1] == "hidden":
                     self.assertNotIn(hidden_forbidden, t["output"], f"hidden test {t['name']} shows it")
-            self.assertTrue(any(hidden_forbidden in t["output"] for t in data["tests"] if t["tags"][1] == "public"),
-                            "the public feedback should still show the exception's own message")
+            if not public_forbidden:
+                self.assertTrue(any(hidden_forbidden in t["output"] for t in data["tests"] if t["tags"][1] == "public"),
+                                "the public feedback should still show the exception's own message")
+        if public_forbidden:
+            for t in data["tests"]:
+                if t["tags"][1] == "public":
+                    self.assertNotIn(public_forbidden, t["output"], f"public test {t['name']} shows it")
 
 
 add_fixture_tests(Adversarial, "*/expect.json")
@@ -368,6 +374,59 @@ class CallbackTables(ToolTest):
         for scalar in ("float", "double"):
             name = f"ch06.hidden.hidden: a light below the surface sends no shadow ray<{scalar}>"
             self.assertEqual(status.get(name), "failed", f"{name}: {graded.stdout[-500:]}")
+
+
+CALLBACK_FIXTURES = os.path.join(REPO, "tests", "fixtures", "callbacks")
+
+
+class CallbackRules(ToolTest):
+    """One test per tests/fixtures/callbacks/NAME/ with an expect.json (test_NAME, '-' read as '_'): a
+    wrong answer with a trick against the callbacks' rules, stored as attack.patch over the solution
+    file named in expect.json. The trick's lines sit in `#ifndef RT_HONEST`: with RT_HONEST defined
+    the same file is the honest wrong answer. Both are graded; the attack must gain nothing over the
+    honest one (no test it passes that the honest one fails), and fail every test `must_fail` names."""
+
+    def check_fixture(self, name):
+        folder = os.path.join(CALLBACK_FIXTURES, name)
+        with open(os.path.join(folder, "expect.json")) as f:
+            expect = json.load(f)
+        work = os.path.join(config.work, "callback-rules", name)
+        shutil.rmtree(work, ignore_errors=True)
+        solution = solution_folder(expect["chapter"])
+        patched = os.path.join(work, "src", os.path.relpath(solution, REPO))
+        shutil.copytree(solution, patched)
+        with open(os.path.join(folder, "attack.patch")) as patch:
+            subprocess.run(["patch", "-s", "-p1", "-d", os.path.join(work, "src")], stdin=patch, check=True)
+        files = {}
+        for path in sorted(glob.glob(os.path.join(patched, "*.cpp"))):
+            with open(path) as f:
+                files[os.path.basename(path)] = f.read()
+        attacked = os.path.basename(expect["solution_file"])
+        honest = dict(files)
+        honest[attacked] = f"#define {expect['honest_define']} 1\n" + files[attacked]
+        statuses, scores = {}, {}
+        for who, sources in (("attack", files), ("honest", honest)):
+            sub = make_submission(os.path.join(work, who), files=sources)
+            out = os.path.join(work, who + "-results", "results.json")
+            data = self.assertGraded(grade(sub, out, expect["chapter"], config.build_dir, TEST_LIMITS))
+            statuses[who] = {t["name"]: t["status"] for t in data["tests"]}
+            scores[who] = total_score(data)
+            total = sum(t["max_score"] for t in data["tests"])
+        self.assertLess(scores["honest"], total, "the honest wrong answer scored full marks: nothing to compare")
+        gained = [n for n, s in statuses["attack"].items() if s == "passed" and statuses["honest"].get(n) != "passed"]
+        self.assertEqual(gained, [], f"{name}: the trick passes tests the honest wrong answer fails")
+        self.assertLessEqual(scores["attack"], scores["honest"], f"{name}: the trick gains points")
+        for pattern in expect["must_fail"]:
+            named = [n for n in statuses["attack"] if matches(n, [pattern])]
+            self.assertTrue(named, f"no test matches {pattern}")
+            for n in named:
+                self.assertEqual(statuses["attack"][n], "failed", f"{name}: {n} passed")
+
+
+for _path in sorted(glob.glob(os.path.join(CALLBACK_FIXTURES, "*", "expect.json"))):
+    def _test(self, name=os.path.basename(os.path.dirname(_path))):
+        self.check_fixture(name)
+    setattr(CallbackRules, "test_" + os.path.basename(os.path.dirname(_path)).replace("-", "_"), _test)
 
 
 class Batch(ToolTest):

@@ -1,6 +1,7 @@
 // Chapter 03's exercise functions for the judge and the runner (table.hpp explains the two halves).
 // The intersector travels as a number: the judge answers each object the student's loop asks about
-// (served_wire.hpp) with the object's own test, under the test's rules (served.hpp).
+// (served_wire.hpp) with the object's own test, and its record of those calls decides the test's rules
+// (served.hpp).
 #include "served_wire.hpp"
 #include "table.hpp"
 #include "03-scene-loop/scene_loop.hpp"
@@ -10,8 +11,8 @@ namespace rt::ch03 {
 template <class T>
 std::optional<hit_record<T>> closest_hit(int object_count, const object_intersector<T>& intersect, const ray<T>& r,
                                          interval<T> range) {
-    return RT_RPC_FORWARD_AS(std::optional<hit_record<T>>, closest_hit, object_count,
-                             ::rt::rpc::judge_served(intersect, r), r, range);
+    return RT_RPC_FORWARD_SERVED(std::optional<hit_record<T>>, closest_hit, intersect, r, object_count, served, r,
+                                 range);
 }
 }  // namespace rt::ch03
 #endif

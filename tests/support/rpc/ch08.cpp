@@ -2,7 +2,7 @@
 // A tree argument travels whole (its nodes and order) only when it is not the tree this judge sent to
 // this runner last (the tests ask hundreds of rays through one tree); the leaf intersector travels as
 // a number: the judge answers each object the student's traversal asks about (served_wire.hpp) with
-// the object's own test, under the test's rules (served.hpp).
+// the object's own test, and its record of those calls decides the test's rules (served.hpp).
 #include "08-acceleration/bvh.hpp"
 #include "served_wire.hpp"
 #include "table.hpp"
@@ -92,12 +92,11 @@ bvh<T> build_sah(const std::vector<aabb<T>>& boxes, const build_options& options
 template <class T>
 std::optional<hit_record<T>> closest_hit(const bvh<T>& tree, const leaf_intersector<T>& intersect, const ray<T>& r,
                                          const interval<T>& range) {
-    return RT_RPC_FORWARD_AS(std::optional<hit_record<T>>, closest_hit, tree, ::rt::rpc::judge_served(intersect, r), r,
-                             range);
+    return RT_RPC_FORWARD_SERVED(std::optional<hit_record<T>>, closest_hit, intersect, r, tree, served, r, range);
 }
 template <class T>
 bool any_hit(const bvh<T>& tree, const leaf_intersector<T>& intersect, const ray<T>& r, const interval<T>& range) {
-    return RT_RPC_FORWARD_AS(bool, any_hit, tree, ::rt::rpc::judge_served(intersect, r), r, range);
+    return RT_RPC_FORWARD_SERVED(bool, any_hit, intersect, r, tree, served, r, range);
 }
 }  // namespace rt::ch08
 #endif

@@ -92,6 +92,7 @@ void throw_described(const std::string& bytes, const std::function<std::string(e
     get(r, k);
     get(r, text);
     if (k < 1 || k > 7) throw protocol_error("an exception of unknown kind");
+    if (r.remaining() != 0) throw protocol_error("an exception longer than its message");
     const auto what = static_cast<exception_kind>(k);
     text = retell ? retell(what, text) : text;
     switch (what) {

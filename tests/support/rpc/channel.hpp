@@ -1,12 +1,13 @@
 // channel.hpp — the messages between the judge and the runner, and the exceptions that cross.
 //
-// One call: the judge sends `call` (the function's name and its arguments); the runner runs the student's
-// function and sends `answer` (the result) or `threw` (the exception). While a call of chapter 03's
-// closest_hit or chapter 08's traversal is outstanding, the runner sends `call_back` for each object the
-// student's code asks about; the judge answers it (`call_back_answer`) and keeps waiting, so the judge
-// sees every call the code makes (served_wire.hpp says why these are not answered in the runner).
-// Chapter 06's occlusion answers travel with the call (served.hpp). Before its first call to a runner
-// the judge sends `same_cpu`: the CPU the two share (judge.cpp, share_cpu).
+// One call: the judge sends `call` (the call's number, the function's name and its arguments); the runner
+// runs the student's function and sends `answer` (the result) or `threw` (the exception). While a call of
+// chapter 03's closest_hit, chapter 06's shade or chapter 08's traversal is outstanding, the runner sends
+// `call_back` for each question the student's code asks its callback; the judge answers it
+// (`call_back_answer`) and keeps waiting, so the judge sees every call the code makes (served_wire.hpp
+// says why these are not answered in the runner). Every message about a call starts with the call's
+// 32-bit number: a message about another call is garbage (judge.cpp, call_remote). Before its first call
+// to a runner the judge sends `same_cpu`: the CPU the two share (judge.cpp, share_cpu).
 #pragma once
 
 #include "wire.hpp"
@@ -19,12 +20,12 @@ namespace rt::rpc {
 // --- messages -------------------------------------------------------------------------------------------
 // Every message is a kind byte and its bytes, framed by a 32-bit length (channel.cpp).
 enum class kind : std::uint8_t {
-    call = 1,             // judge -> runner: function name, arguments
-    answer = 2,           // runner -> judge: the result
-    threw = 3,            // either way: exception kind, message
+    call = 1,             // judge -> runner: call number, function name, arguments
+    answer = 2,           // runner -> judge: call number, the result
+    threw = 3,            // runner -> judge: call number, exception kind, message
     same_cpu = 4,         // judge -> runner: run on this CPU (a 32-bit number), the judge's own; no answer
-    call_back = 5,        // runner -> judge: an object callback asked (callback number, its arguments)
-    call_back_answer = 6  // judge -> runner: the callback's answer
+    call_back = 5,        // runner -> judge: call number, a callback asked (callback number, its arguments)
+    call_back_answer = 6  // judge -> runner: call number, the callback's answer
 };
 
 // The exceptions that cross: tests check some of their types (std::invalid_argument for bad input).

@@ -20,7 +20,7 @@
 
 namespace rt::rpc {
 
-bool show_student_messages = false;
+bool public_feedback = false;
 
 namespace {
 
@@ -110,20 +110,21 @@ std::string one_safe_line(const std::string& text) {
     return out;
 }
 
-// What the test sees of an exception thrown by the student's code.
+// "ch01::intersect_unit_sphere<float>" -> "chapter 01", from the judge's own name of the call.
+std::string chapter_of(const std::string& function) {
+    if (function.size() >= 4 && function.compare(0, 2, "ch") == 0 && std::isdigit(static_cast<unsigned char>(function[2])) &&
+        std::isdigit(static_cast<unsigned char>(function[3])))
+        return "chapter " + function.substr(2, 2);
+    return "this chapter";
+}
+
+// What the test sees of an exception thrown by the student's code. "not implemented yet" is told in the
+// judge's words only (the chapter and the function the judge called): its text in the runner is the
+// student's to choose, and digits there could carry a hidden input out.
 std::string retell(const std::string& function, exception_kind k, const std::string& text) {
     const std::string name = plain_name(function);
-    if (k == exception_kind::not_implemented) {
-        // The stub's own words, rebuilt here: "not implemented yet: chapter NN, function".
-        const std::string prefix = "not implemented yet: chapter ";
-        std::string chapter = "this chapter";
-        if (text.compare(0, prefix.size(), prefix) == 0 && text.size() >= prefix.size() + 2 &&
-            std::isdigit(static_cast<unsigned char>(text[prefix.size()])) &&
-            std::isdigit(static_cast<unsigned char>(text[prefix.size() + 1])))
-            chapter = "chapter " + text.substr(prefix.size(), 2);
-        return "not implemented yet: " + chapter + ", " + name;
-    }
-    if (show_student_messages) return one_safe_line(text);
+    if (k == exception_kind::not_implemented) return "not implemented yet: " + chapter_of(function) + ", " + name;
+    if (public_feedback) return one_safe_line(text);
     return "your " + name + " threw an exception (its message is not shown for hidden tests)";
 }
 
@@ -224,36 +225,48 @@ std::uint32_t judge_keep_callback(erased_callback f) {
 
 // A call_back from the runner: the callback's number and its arguments, answered from the judge's own
 // copy. Whatever the runner sent is only data here: an unknown number or short arguments end the runner.
-std::string answer_call_back(const std::string& bytes) {
-    reader r(bytes);
+std::string answer_call_back(reader& in) {
     std::uint32_t id = 0;
-    get(r, id);
+    get(in, id);
     if (id >= callbacks().size()) throw protocol_error("a callback that was never given");
-    const std::string arguments = bytes.substr(4);  // the reader keeps a view: the string must outlive it
-    reader in(arguments);
     writer out;
     callbacks()[id](in, out);
     if (in.remaining() != 0) throw protocol_error("a callback's arguments longer than expected");
     return out.bytes();
 }
 
+// Every call has a number, and every message the runner sends about it starts with that number: an
+// answer left over from another call (a second answer, one the judge gave up on) is garbage, not the
+// answer to this call.
+std::uint32_t next_call_number() {
+    static std::uint32_t last = 0;
+    return ++last;
+}
+
 std::string call_remote(const std::string& function, const std::string& arguments) {
     connection& c = runner();
     if (!c.broken.empty()) throw runner_gone(c.broken);
     channel ch(c.fd);
+    const std::uint32_t number = next_call_number();
     try {
         share_cpu(c, ch);
         writer call;
+        put(call, number);
         put(call, function);
         call.raw(arguments.data(), arguments.size());
         ch.send(kind::call, call.bytes());
         for (;;) {
             const message m = ch.receive();
-            if (m.what == kind::answer) return m.bytes;
+            reader in(m.bytes);
+            std::uint32_t about = 0;
+            get(in, about);
+            if (about != number) throw protocol_error("a message about another call");
+            const std::string rest = m.bytes.substr(sizeof about);
+            if (m.what == kind::answer) return rest;
             if (m.what == kind::call_back) {
                 std::string reply;
                 try {
-                    reply = answer_call_back(m.bytes);
+                    reply = answer_call_back(in);
                 } catch (const protocol_error&) {
                     throw;
                 } catch (...) {
@@ -266,15 +279,20 @@ std::string call_remote(const std::string& function, const std::string& argument
                                    plain_name(function);
                     throw;
                 }
-                ch.send(kind::call_back_answer, reply);
+                writer answer;
+                put(answer, number);
+                answer.raw(reply.data(), reply.size());
+                ch.send(kind::call_back_answer, answer.bytes());
                 continue;
             }
             if (m.what != kind::threw) throw protocol_error("a message the judge did not ask for");
-            throw_described(m.bytes, [&](exception_kind k, const std::string& t) { return retell(function, k, t); });
+            throw_described(rest, [&](exception_kind k, const std::string& t) { return retell(function, k, t); });
         }
     } catch (const protocol_error& e) {
         gone(c, function, e.what());
     }
 }
+
+void runner_sent_garbage(const std::string& function, const std::string& why) { gone(runner(), function, why); }
 
 }  // namespace rt::rpc

@@ -13,11 +13,13 @@
 
 namespace rt::rpc {
 
-// Hidden tests never show a student's own words (an exception's text could carry a hidden input out);
-// the public judge's main() sets this to true so public feedback keeps the student's messages.
-extern bool show_student_messages;
+// True in a public judge (its main() sets it): feedback may show the student's own exception messages
+// and the numbers of a callback's call that broke a rule. A hidden judge shows neither: a student's
+// text, or a number the student's code chose, could carry a hidden input out.
+extern bool public_feedback;
 
-// Raised in the judge when the runner stops answering (crash, exit, limit, garbage on the channel).
+// Raised in the judge when the runner stops answering (crash, exit, limit, garbage on the channel). The
+// runner is then marked broken: the case fails, and the grader hands the next case a fresh runner.
 struct runner_gone : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
@@ -54,6 +56,10 @@ private:
 // Sends one call, answers the runner's call_back messages until the answer comes; returns its bytes.
 std::string call_remote(const std::string& function, const std::string& arguments);
 
+// The runner's answer to `function` is not a value of the type it should be: the runner is broken
+// (marked so: the grader replaces it before the next case, and this case fails). Throws runner_gone.
+[[noreturn]] void runner_sent_garbage(const std::string& function, const std::string& why);
+
 template <class T>
 std::string call_name(const char* function) {
     return std::string(function) + (sizeof(T) == sizeof(float) ? "<float>" : "<double>");
@@ -70,9 +76,9 @@ R forward(const std::string& function, const A&... arguments) {
     try {
         get(r, result);
         if (r.remaining() != 0) throw protocol_error("an answer longer than its value");
-    } catch (const protocol_error&) {
-        throw runner_gone("the runner's answer to " + function + " is not a value of the right type "
-                          "(did your code write to the grader's channel?)");
+    } catch (const protocol_error& e) {
+        runner_sent_garbage(function, std::string("its answer is not a value of the right type (") + e.what() +
+                                          "; did your code write to the grader's channel?)");
     }
     return result;
 }

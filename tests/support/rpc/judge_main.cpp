@@ -74,7 +74,7 @@ REGISTER_LISTENER("rt_judge_verdict", 1, verdict_listener);
 
 int main(int argc, char** argv) {
 #if defined(RT_JUDGE_PUBLIC)
-    rt::rpc::show_student_messages = true;  // public feedback keeps the student's own exception messages
+    rt::rpc::public_feedback = true;  // public feedback keeps the student's own messages and a rule's numbers
 #endif
     std::signal(SIGPIPE, SIG_IGN);  // a runner that is gone is reported by the channel, not by a signal
     doctest::Context context(argc, argv);

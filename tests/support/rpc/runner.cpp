@@ -24,22 +24,32 @@ std::map<std::string, handler>& handlers() {
 }
 
 int judge_fd = -1;
+std::uint32_t current_call = 0;  // the number of the call being answered (judge.cpp, call_remote)
 
-// Runs one call from the judge and sends back its answer or its exception.
+std::string numbered(std::uint32_t number, const std::string& bytes) {
+    writer w;
+    put(w, number);
+    w.raw(bytes.data(), bytes.size());
+    return w.bytes();
+}
+
+// Runs one call from the judge (its number, the function's name, the arguments) and sends back its
+// answer or its exception, under the call's number.
 void answer(channel& ch, const std::string& bytes) {
     reader r(bytes);
+    get(r, current_call);
     std::string function;
     get(r, function);
     const auto found = handlers().find(function);
-    std::string rest(bytes.substr(4 + function.size()));
+    const std::string rest(bytes.substr(sizeof current_call + 4 + function.size()));
     try {
         if (found == handlers().end()) throw std::logic_error("the runner has no function " + function);
         const std::string result = found->second(rest);
-        ch.send(kind::answer, result);
+        ch.send(kind::answer, numbered(current_call, result));
     } catch (const protocol_error&) {
         throw;
     } catch (...) {
-        ch.send(kind::threw, describe_current_exception());
+        ch.send(kind::threw, numbered(current_call, describe_current_exception()));
     }
 }
 
@@ -64,18 +74,26 @@ std::string runner_call_back(std::uint32_t id, const std::string& arguments) {
     writer w;
     put(w, id);
     w.raw(arguments.data(), arguments.size());
-    ch.send(kind::call_back, w.bytes());
+    const std::uint32_t asking = current_call;  // the call this question belongs to
+    ch.send(kind::call_back, numbered(asking, w.bytes()));
     for (;;) {
         const message m = ch.receive();
-        if (m.what == kind::call_back_answer) return m.bytes;
+        if (m.what == kind::call_back_answer) {
+            reader r(m.bytes);
+            std::uint32_t about = 0;
+            get(r, about);
+            if (about != asking) throw protocol_error("a callback's answer about another call");
+            return m.bytes.substr(sizeof about);
+        }
         // While the judge answers the callback it may call an exercise function of an earlier chapter:
         // in a student kit the judge has no solutions, so the test's own helpers (chapter 06's served
         // occlusion test asks chapter 02's sphere) are forwarded here too. The call is answered first,
-        // as any other, and then the callback's answer comes.
+        // as any other (under its own number), and then the callback's answer comes.
         if (m.what == kind::same_cpu) {
             run_on(m.bytes);
         } else if (m.what == kind::call) {
             answer(ch, m.bytes);
+            current_call = asking;
         } else {
             throw protocol_error("a message the runner did not expect");
         }

@@ -1,4 +1,4 @@
-// served.hpp — callbacks the tests give an exercise, and the rules they check (tools/grader/README.md, "Who decides").
+// served.hpp — callbacks the tests give an exercise, and the rules they check (README.md here).
 //
 // Chapter 03's closest_hit and chapter 08's traversal call back "does the ray hit object i inside this
 // range?". Under the grader the student's code runs in the runner and the tests in the judge. The judge
@@ -6,28 +6,32 @@
 // test's "wall", the reference sphere or triangle), after checking the test's rules (served_wire.hpp
 // says why nothing is answered from data in the runner).
 //
-// How the code under test uses the callback is decided from the calls the judge itself answered and
-// from the exercise's answer, never from a log the runner keeps (the runner is the student's process).
-// A call that breaks a rule of the test:
+// How the code under test uses the callback is decided from the judge's own RECORD of the calls it
+// answered (object_server), never from the exercise's answer and never from a log the runner keeps:
+// both are the student's to choose. A call that breaks a rule of the test:
 //   * beyond the test's call budget (an empty scene asks nothing; a pruned traversal asks few objects),
 //   * about an object that does not exist, or about another ray than the call's,
 //   * not the call the test expects next (chapter 03: objects 0, 1, 2, ... with tmax shrunk),
-// is answered, from then on, with a FAULT RECORD: a hit just inside the asked range, so it is the
-// nearest hit the code can keep, whose normal says which rule broke at which call (fault_in() reads it).
-// Code that keeps the nearest hit hands it back, and the judge sees the fault in the answer.
+// is written in the record, and it and every later call of that exercise call are answered with a miss.
+// Once the exercise's call is over, the judge throws broken_rule out of it (in the judge, where the
+// student's code cannot catch it), whatever the answer was; a test that wants to say more about the
+// rule reads the note the exception carries (call_with_rules). In the student's own build the same
+// callables answer in-process and throw broken_rule at the call that broke the rule, so an honest
+// exercise fails the same tests, with the same messages, in both places.
 #pragma once
 
 #include "common/hit_record.hpp"
 #include "common/interval.hpp"
 #include "common/ray.hpp"
 
-#include <cmath>
 #include <cstring>
 #include <functional>
 #include <memory>
-#include <stdexcept>
 #include <optional>
+#include <sstream>
+#include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -41,15 +45,6 @@ enum class call_fault : int {
     unexpected_call = 4,  // not the call the test expects next (object or range)
 };
 
-// What a fault record says: the first call that broke a rule (numbered from 0) and what it asked.
-template <class T>
-struct fault_note {
-    call_fault fault{};
-    int call = 0;
-    int object = 0;
-    interval<T> range{};
-};
-
 // One call a test expects, in order: object i about this range.
 template <class T>
 struct expected_call {
@@ -57,43 +52,85 @@ struct expected_call {
     interval<T> range{};
 };
 
-// A fault record carries -(2 + fault) in normal.z: a real normal (unit length, or a test wall's z = 1)
-// never has z <= -3.
+// The judge's note of the first call that broke a rule: which rule, which call (numbered from 0), what
+// it asked, and what the rule allowed.
 template <class T>
-hit_record<T> fault_record(const fault_note<T>& note, T t) {
-    hit_record<T> h;
-    h.t = t;
-    h.point = vec3<T>(note.range.min, note.range.max, T(0));
-    h.normal = vec3<T>(T(note.call), T(note.object), -T(2 + int(note.fault)));
-    return h;
-}
+struct fault_note {
+    call_fault fault{};
+    long call = 0;
+    int object = 0;
+    interval<T> range{};
+    long budget = -1;                         // the test's budget (over_budget)
+    int count = 0;                            // the objects that exist, 0 .. count-1 (no_such_object)
+    std::optional<expected_call<T>> expected; // the call expected instead (unexpected_call; none: no more calls)
+};
 
+// The rule a note says was broken, in the lecture's words. With `values` the numbers of the call are
+// in the message (public tests: they teach); without, only the rule (hidden tests show the concept, and
+// the numbers of a call are chosen by the student's code: they could carry a hidden input out).
 template <class T>
-std::optional<fault_note<T>> fault_in(const std::optional<hit_record<T>>& hit) {
-    if (!hit) return std::nullopt;
-    const T z = -hit->normal.z - T(2);
-    if (!(z >= T(1) && z <= T(4) && z == std::floor(z))) return std::nullopt;
-    // The answer is the student's: a number that is no int must not be converted to one.
-    const auto as_int = [](T v) { return std::isfinite(v) && std::fabs(v) < T(1e9) ? int(v) : -1; };
-    fault_note<T> note;
-    note.fault = call_fault(int(z));
-    note.call = as_int(hit->normal.x);
-    note.object = as_int(hit->normal.y);
-    note.range = {hit->point.x, hit->point.y};
-    return note;
-}
-
-// The rule a fault broke, in the lecture's words (for a failure message).
-template <class T>
-std::string describe_fault(const fault_note<T>& note) {
-    const std::string call = "call " + std::to_string(note.call + 1) + " (object " + std::to_string(note.object) + ")";
-    switch (note.fault) {
-        case call_fault::over_budget: return call + " was one more than the test allows";
-        case call_fault::no_such_object: return call + " asked about an object that does not exist";
-        case call_fault::other_ray: return call + " asked about another ray than the one given";
-        case call_fault::unexpected_call: return call + " was not the call expected next";
+std::string describe_fault(const fault_note<T>& note, bool values) {
+    std::ostringstream s;
+    s << "a rule of this test's intersect callback was broken: ";
+    if (!values) {
+        switch (note.fault) {
+            case call_fault::over_budget: s << "it was called more often than the test allows"; break;
+            case call_fault::no_such_object: s << "it was asked about an object that does not exist"; break;
+            case call_fault::other_ray: s << "it was asked about another ray than the one the exercise was given"; break;
+            case call_fault::unexpected_call:
+                s << "its calls were not the ones expected (each object once, in order 0, 1, 2, ..., with the "
+                     "caller's tmin and the closest t so far as tmax)";
+                break;
+        }
+        return s.str();
     }
-    return call;
+    s << "call " << note.call + 1 << " asked about object " << note.object;
+    switch (note.fault) {
+        case call_fault::over_budget:
+            if (note.budget == 0) s << ", but this test allows no call at all";
+            else s << ", one call more than this test allows (" << note.budget << ")";
+            break;
+        case call_fault::no_such_object:
+            if (note.count <= 0) s << ", but there are no objects";
+            else s << ", but the objects are 0 .. " << note.count - 1;
+            break;
+        case call_fault::other_ray: s << " for another ray than the one the exercise was given: pass it on unchanged"; break;
+        case call_fault::unexpected_call:
+            s << " with (tmin, tmax) = (" << note.range.min << ", " << note.range.max << ")";
+            if (note.expected)
+                s << ", but the call expected next is object " << note.expected->object << " with (tmin, tmax) = ("
+                  << note.expected->range.min << ", " << note.expected->range.max << ")";
+            else
+                s << ", but every object had been asked already";
+            break;
+    }
+    return s.str();
+}
+
+// Thrown out of the exercise's call when one of its calls broke a rule of the test. A std::logic_error,
+// so a test that does not look for it fails with its message.
+template <class T>
+struct broken_rule : std::logic_error {
+    broken_rule(const fault_note<T>& n, bool values) : std::logic_error(describe_fault(n, values)), note(n) {}
+    fault_note<T> note;
+};
+
+// One call of an exercise that takes a served callback, and the record's word on it: `broken` is the
+// first rule the call broke (the answer then does not count and is left empty). Any other exception
+// goes on.
+template <class T, class R>
+struct ruled_call {
+    R answer{};
+    std::optional<fault_note<T>> broken;
+};
+
+template <class T, class Call>
+ruled_call<T, std::invoke_result_t<Call&>> call_with_rules(Call&& call) {
+    try {
+        return {call(), std::nullopt};
+    } catch (const broken_rule<T>& e) {
+        return {{}, e.note};
+    }
 }
 
 // The test's rules for one call of the exercise: the ray it was given, the objects that exist, how many
@@ -111,23 +148,28 @@ struct call_rules {
 template <class T>
 using object_test = std::function<std::optional<hit_record<T>>(int i, const ray<T>& r, const interval<T>& range)>;
 
-// Answers one call of the exercise's callbacks after another (in the judge, or in the test's own
-// process): with the object's own test while the rules hold, with a fault record from the first call
-// that breaks one.
+// Answers the callback's calls of one call of the exercise (in the judge, or in the test's own process)
+// and keeps the record: how many calls, and the first that broke a rule. While the rules hold a call
+// gets the object's own test; from the first broken rule on, a miss (the verdict is already written).
 template <class T>
 class object_server {
 public:
     object_server(call_rules<T> rules, object_test<T> test) : rules_(std::move(rules)), test_(std::move(test)) {}
 
     const ray<T>& for_ray() const { return rules_.r; }
+    long calls() const { return calls_; }
+    const std::optional<fault_note<T>>& broken() const { return broken_; }
 
     std::optional<hit_record<T>> answer(int i, const ray<T>& r, const interval<T>& range) {
-        const int call = calls_++;
-        if (!fault_) {
-            if (const auto broken = rule_broken(call, i, r, range)) fault_ = fault_note<T>{*broken, call, i, range};
-        }
-        if (fault_) return fault_answer(range);
+        const long call = calls_++;
+        if (!broken_) broken_ = rule_broken(call, i, r, range);
+        if (broken_) return std::nullopt;
         return test_(i, r, range);
+    }
+
+    // Once the exercise's call is over: the record decides.
+    void throw_if_broken(bool values) const {
+        if (broken_) throw broken_rule<T>(*broken_, values);
     }
 
 private:
@@ -139,38 +181,44 @@ private:
         return std::memcmp(&a.min, &b.min, sizeof(T)) == 0 && std::memcmp(&a.max, &b.max, sizeof(T)) == 0;
     }
 
-    std::optional<call_fault> rule_broken(int call, int i, const ray<T>& r, const interval<T>& range) const {
-        if (rules_.budget >= 0 && call >= rules_.budget) return call_fault::over_budget;
-        if (i < 0 || i >= rules_.count) return call_fault::no_such_object;
-        if (!same_bits(r, rules_.r)) return call_fault::other_ray;
-        if (rules_.check_calls) {
-            if (std::size_t(call) >= rules_.expected.size()) return call_fault::unexpected_call;
-            const expected_call<T>& e = rules_.expected[std::size_t(call)];
-            if (e.object != i || !same_bits(e.range, range)) return call_fault::unexpected_call;
+    std::optional<fault_note<T>> rule_broken(long call, int i, const ray<T>& r, const interval<T>& range) const {
+        fault_note<T> note;
+        note.call = call;
+        note.object = i;
+        note.range = range;
+        note.budget = rules_.budget;
+        note.count = rules_.count;
+        if (rules_.budget >= 0 && call >= rules_.budget) {
+            note.fault = call_fault::over_budget;
+        } else if (i < 0 || i >= rules_.count) {
+            note.fault = call_fault::no_such_object;
+        } else if (!same_bits(r, rules_.r)) {
+            note.fault = call_fault::other_ray;
+        } else if (rules_.check_calls) {
+            if (std::size_t(call) < rules_.expected.size()) {
+                const expected_call<T>& e = rules_.expected[std::size_t(call)];
+                if (e.object == i && same_bits(e.range, range)) return std::nullopt;
+                note.expected = e;
+            }
+            note.fault = call_fault::unexpected_call;
+        } else {
+            return std::nullopt;
         }
-        return std::nullopt;
-    }
-
-    // The fault record just inside the asked range, so it is the nearest hit there can be; none when the
-    // range holds no number at all.
-    std::optional<hit_record<T>> fault_answer(const interval<T>& range) const {
-        const T t = std::nextafter(range.min, range.max);
-        if (!range.contains(t)) return std::nullopt;
-        return fault_record(*fault_, t);
+        return note;
     }
 
     call_rules<T> rules_;
     object_test<T> test_;
-    int calls_ = 0;
-    std::optional<fault_note<T>> fault_;
+    long calls_ = 0;
+    std::optional<fault_note<T>> broken_;
 };
 
 // The callable a test gives as its callback (chapter 03's object_intersector, chapter 08's
 // leaf_intersector): objects 0 .. count-1, each tested by `test` (instructor code), with the test's
 // rules. Under the grader the judge keeps it and answers the runner's calls through an object_server
 // (served_wire.hpp); in the test's own process (a student's build) it answers through an object_server
-// too, a new one whenever the ray changes (a new call of the exercise), so the tests behave the same in
-// both places.
+// too, a new one whenever the ray changes (a new call of the exercise), and throws broken_rule at the
+// call that breaks a rule, so the tests behave the same in both places.
 template <class T>
 struct served_objects {
     int count = 0;
@@ -189,7 +237,12 @@ struct served_objects {
     std::optional<hit_record<T>> operator()(int i, const ray<T>& r, const interval<T>& range) const {
         const ray<T>& wanted = only_ray ? *only_ray : r;
         if (!*here || std::memcmp(&(*here)->for_ray(), &wanted, sizeof wanted) != 0) here->emplace(server_for(r));
-        return (*here)->answer(i, r, range);
+        auto answer = (*here)->answer(i, r, range);
+        if (const auto broken = (*here)->broken()) {
+            here->reset();  // the exception ends this call of the exercise: the next call starts afresh
+            throw broken_rule<T>(*broken, true);
+        }
+        return answer;
     }
 
     // Chapter 08's form: true and the record (with hit.object = i) when hit.
@@ -213,7 +266,7 @@ struct served_objects {
 // is the student's arithmetic) and keeps each query with the answer the test's occlusion test gives it.
 // It answers the runner's questions from that list; any other question, or one beyond the test's
 // budget, makes the judge throw std::logic_error out of shade() once the call is over (a bool answer
-// has no room for a fault record, and an exception thrown in the runner could be caught there).
+// says nothing of which rule broke, and an exception thrown in the runner could be caught there).
 
 // One question shade() may ask and the test's answer to it.
 template <class T>

@@ -1,11 +1,15 @@
-// served_wire.hpp — how the tests' callbacks travel (served.hpp says what they are).
+// served_wire.hpp — how the tests' callbacks travel (served.hpp says what they are and which rules they check).
 //
 // Chapter 03's intersector and chapter 08's leaf test: the judge answers every call. Its stub keeps the
 // test's callback IN THE JUDGE, in an object_server with the test's rules (budget, expected calls); the
-// runner gets a function that sends each call's arguments to the judge and returns the judge's answer. They are not answered from data in the runner: whatever
-// the runner holds, the student's code can read (the red team's closest_hit read a table of every
-// object's hits through std::function::target and scored 86/90 without a loop), and how the code uses
-// the callback (order, shrinking tmax, pruning) is only known to the judge if the judge sees the calls.
+// runner gets a function that sends each call's arguments to the judge and returns the judge's answer.
+// When the exercise's call is over, the stub asks the server's record whether a rule broke and throws
+// broken_rule if one did (judged_call), whatever the runner answered. Nothing is answered from data in
+// the runner: whatever the runner holds, the student's code can read (the red team's closest_hit read a
+// table of every object's hits through std::function::target and scored 86/90 without a loop), and how
+// the code uses the callback (order, shrinking tmax, pruning) is only known to the judge if the judge
+// sees the calls. Nor is a rule reported inside an answer: the student's code can read an answer
+// before it hands it back (a "fault record" in the answer was skipped by a loop that knew its shape).
 //
 // Chapter 06's occlusion test goes the same way: the judge keeps the answers to the questions shade()
 // may ask and answers each question the runner sends. A question off the list or over the budget is
@@ -15,6 +19,10 @@
 
 #include "served.hpp"
 #include "wire.hpp"
+
+#if defined(RT_RPC_JUDGE)
+#include "judge.hpp"
+#endif
 
 #include <memory>
 #include <stdexcept>
@@ -38,6 +46,28 @@ judge_callback<T> judge_served(const Callback& f, const ray<T>& r) {
                                "(tests/support/rpc/served.hpp): the grader cannot answer it");
     return {std::make_shared<test::object_server<T>>(served->server_for(r))};
 }
+
+#if defined(RT_RPC_JUDGE)
+// One call of an exercise that takes an object callback, made by the judge's stub: `send(callback)`
+// forwards the call with the callback's number (RT_RPC_FORWARD_SERVED, table.hpp). Once it is over, the
+// record of the calls the judge served decides: a broken rule throws broken_rule (with the call's
+// numbers in a public judge, the rule alone in a hidden one), whatever the runner answered or threw.
+template <class R, class T, class Callback, class Send>
+R judged_call(const Callback& f, const ray<T>& r, Send&& send) {
+    const judge_callback<T> served = judge_served(f, r);
+    R answer{};
+    try {
+        answer = send(served);
+    } catch (const runner_gone&) {
+        throw;  // the runner broke: that fails the case already
+    } catch (...) {
+        served.server->throw_if_broken(public_feedback);
+        throw;
+    }
+    served.server->throw_if_broken(public_feedback);
+    return answer;
+}
+#endif
 
 template <class T>
 void put(writer& w, const judge_callback<T>& c) {

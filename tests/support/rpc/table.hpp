@@ -25,6 +25,13 @@
 // served callback travels as its table, served_wire.hpp).
 #define RT_RPC_FORWARD_AS(R, name, ...) \
     ::rt::rpc::forward<R>(::rt::rpc::call_name<T>(RT_RPC_CHAPTER "::" #name), __VA_ARGS__)
+// A call that takes an object callback (chapter 03's closest_hit, chapter 08's traversal): the judge
+// keeps `callback` (for the call's ray r) and the arguments name its stand-in `served`; once the call
+// is over, the judge's record of the callback's calls decides (served_wire.hpp, judged_call).
+#define RT_RPC_FORWARD_SERVED(R, name, callback, r, ...)                                                      \
+    ::rt::rpc::judged_call<R>(callback, r, [&](const auto& served) {                                          \
+        return ::rt::rpc::forward<R>(::rt::rpc::call_name<T>(RT_RPC_CHAPTER "::" #name), __VA_ARGS__);        \
+    })
 
 #elif defined(RT_RPC_PLACEHOLDER)
 
@@ -42,6 +49,7 @@ template <class R, class... A>
 #define RT_RPC_DEFINES_STUBS 1
 #define RT_RPC_FORWARD(name, ...) ::rt::rpc::placeholder<decltype(name<T>(__VA_ARGS__))>(#name, __VA_ARGS__)
 #define RT_RPC_FORWARD_AS(R, name, ...) ::rt::rpc::placeholder<R>(#name)  // the arguments are not evaluated
+#define RT_RPC_FORWARD_SERVED(R, name, ...) ::rt::rpc::placeholder<R>(#name)
 
 #elif defined(RT_RPC_RUNNER)
 
