@@ -1,0 +1,226 @@
+// fast_path_arrays.hpp — part of fast_path.cpp: the packet of rays and the
+// scene as structure-of-arrays, with its trees.
+//
+// The parts of fast_path.cpp (fast_path_arrays, _traversal, _spheres,
+// _planes, _triangles, _queries) are not headers for anyone else: each is
+// included once, by fast_path.cpp, after its instruction-set pragma and
+// inside that copy's namespace, and includes nothing itself. (A library
+// header first included after the pragma would have its inline functions
+// compiled for AVX in one copy, and the linker could keep that one for all.)
+// The lane loops are always_inline: in one function with the packet's
+// arrays, the compiler sees that the closest hits written by a loop cannot
+// be the packet or the scene it reads, and vectorises without run-time
+// alias checks (out of line, the same loops measured slower).
+#pragma once
+#ifndef RT_FAST_PATH_PARTS
+#error "a part of fast_path.cpp: included by it, after its headers and its target pragma"
+#endif
+
+constexpr int W = packet_width;
+constexpr int tile_w = 8, tile_h = W / tile_w;  // the pixels of one packet
+static_assert(tile_w * tile_h == W, "a packet is a whole tile");
+
+enum class sphere_mode { none, plain, robust };
+
+// A tree's leaf holds at most 8 objects (build_bvh's max_leaf); one ray
+// tests them as one group of 8 lanes (a vector of 8 floats), like a shadow
+// ray tests brute force's groups.
+constexpr int leaf_lanes = 8;
+
+// Object numbers in the same width as T, so a select on (t, object) pairs
+// stays within one kind of vector lane.
+template <class T>
+using index_t = std::conditional_t<sizeof(T) == 4, std::int32_t, std::int64_t>;
+
+// The rays through one tile of 8 x 4 pixels: lane k is pixel (k % 8, k / 8).
+template <class T>
+struct packet {
+    alignas(64) T ox[W], oy[W], oz[W], dx[W], dy[W], dz[W];
+};
+
+// What each ray of a packet has found so far, and the terms of its
+// direction every kernel uses: a = |d|^2, 1/a, and d_max (direction_max:
+// infinite for a direction the triangle lanes must leave to their exact
+// path). A local object of closest_hits, so the compiler may keep it in
+// registers for the whole object loop; copied out at the end.
+template <class T>
+struct packet_best {
+    using I = index_t<T>;
+    alignas(64) T a[W], inv_a[W], d_max[W], t[W];
+    alignas(64) I object[W];  // -1: nothing hit yet
+
+    explicit packet_best(const packet<T>& p) {
+        for (int k = 0; k < W; ++k) {
+            a[k] = p.dx[k] * p.dx[k] + p.dy[k] * p.dy[k] + p.dz[k] * p.dz[k];
+            inv_a[k] = T(1) / a[k];
+            d_max[k] = direction_max(p.dx[k], p.dy[k], p.dz[k]);
+            t[k] = infinity<T>;
+            object[k] = -1;
+        }
+    }
+
+    // Ray k hits object id at t: kept if nearer than what it has.
+    [[gnu::always_inline]] void keep(int k, T t_new, I id) {
+        const T old_t = t[k];
+        const I old = object[k];
+        const bool closer = t_new < old_t;
+        t[k] = closer ? t_new : old_t;
+        // The object number is selected with a mask, not with ?: : gcc 12
+        // turns "closer ? id : object[k]" into a conditional store, which it
+        // vectorises with a test and a branch that mispredicts all the time.
+        const I mask = -I(closer);
+        object[k] = (old & ~mask) | (id & mask);
+    }
+};
+
+// One shadow ray and its direction's terms, as the any-hit loops use them.
+template <class T>
+struct shadow_ray {
+    T ox, oy, oz, dx, dy, dz, a, inv_a, d_max;
+    T origin[3], direction[3];
+
+    explicit shadow_ray(const ray<T>& r)
+        : ox(r.origin.x), oy(r.origin.y), oz(r.origin.z), dx(r.direction.x), dy(r.direction.y), dz(r.direction.z),
+          a(dx * dx + dy * dy + dz * dz), inv_a(T(1) / a), d_max(direction_max(dx, dy, dz)), origin{ox, oy, oz},
+          direction{dx, dy, dz} {}
+};
+
+// A shadow ray tests brute force's objects shadow_group at a time (here the
+// lanes are objects), stopping at the first group with a blocker: one
+// vector register of floats; larger groups would spend their lanes on the
+// NaN padding in small scenes.
+constexpr int shadow_group = 8;
+static_assert(W % shadow_group == 0, "the arrays are padded to a multiple of W, so also of shadow_group");
+inline size_t shadow_groups(size_t n) { return (n + shadow_group - 1) / shadow_group * shadow_group; }
+
+template <class T>
+struct soa_scene {
+    size_t sphere_count = 0, plane_count = 0, triangle_count = 0;
+    // Each array is padded to a multiple of W with NaN entries, which never
+    // hit, so the shadow-ray loop can run over whole groups of W objects.
+    std::vector<T> cx, cy, cz, radius, radius2;
+    std::vector<T> px, py, pz, nx, ny, nz;  // planes: a point and the unit normal
+    std::vector<T> ax, ay, az, e1x, e1y, e1z, e2x, e2y, e2z;  // triangles: corner a, edges b-a, c-a
+    std::vector<T> bx, by, bz, br2;  // a sphere around each triangle (radius squared), to skip it cheaply
+
+    // With a tree, spheres and triangles are stored in the trees' leaf
+    // order, so a leaf is a contiguous range of the arrays; original[i] is
+    // then the scene's own number of object i.
+    bool tree = false;
+    //
+    // Spheres and triangles get different trees, each the faster of the two
+    // on rt-bench's scenes (tools/bench/README.md): spheres a binary tree
+    // walked by a whole packet (traverse_packet: at a million random spheres
+    // it is still faster than one ray at a time through the wide tree),
+    // triangles the 4-wide tree walked one ray at a time (traverse_wide: on
+    // the million-triangle tetrahedron most packets straddle a silhouette,
+    // and single rays are three times faster there).
+    bvh_tree sphere_tree;
+    bvh_wide_tree triangle_tree;
+    std::vector<std::int64_t> original;
+    // The scene's triangles and planes, for the rare exact decisions
+    // (corners and plane_normal below).
+    const std::vector<triangle<double>>* source_triangles = nullptr;
+    const std::vector<plane<double>>* source_planes = nullptr;
+
+    // Plane i's normal as the scene gives it, rounded to T (nx, ny, nz are
+    // the normalised one): plane_t_exact decides "parallel" on it.
+    vec3<T> plane_normal(size_t i) const { return convert<T>((*source_planes)[i].normal); }
+
+    // The corners of stored triangle j rounded to T, as corner a and the
+    // edges were computed from them: triangle_t_exact decides "flat" on the
+    // corners (rounded edges of an exactly flat case need not be flat).
+    std::array<vec3<T>, 3> corners(size_t j) const {
+        const triangle<double>& x = (*source_triangles)[tree ? triangle_tree.order[j] : j];
+        return {convert<T>(x.a), convert<T>(x.b), convert<T>(x.c)};
+    }
+
+    // magnitude: the largest coordinate of the scene, eye and lights, which
+    // sets how much the boxes are widened (see build_trees below).
+    soa_scene(const scene<double>& s, bool use_tree, double magnitude) : tree(use_tree) {
+        sphere_count = s.spheres.size();
+        plane_count = s.planes.size();
+        triangle_count = s.triangles.size();
+        source_triangles = &s.triangles;
+        source_planes = &s.planes;
+        if (tree) build_trees(s, magnitude);
+        for (size_t j = 0; j < sphere_count; ++j) add_sphere(s.spheres[tree ? sphere_tree.order[j] : j]);
+        for (const auto& x : s.planes) add_plane(x);
+        for (size_t j = 0; j < triangle_count; ++j) add_triangle(s.triangles[tree ? triangle_tree.order[j] : j]);
+        for (auto* v : {&cx, &cy, &cz, &radius, &radius2, &px, &py, &pz, &nx, &ny, &nz, &ax, &ay, &az, &e1x, &e1y,
+                        &e1z, &e2x, &e2y, &e2z, &bx, &by, &bz, &br2})
+            // At least leaf_lanes of padding: a tree's leaf is tested leaf_lanes
+            // objects at a time, past its end (those lanes are dropped).
+            for (size_t k = 0; k < size_t(leaf_lanes) || v->size() % W; ++k)
+                v->push_back(std::numeric_limits<T>::quiet_NaN());
+        if (tree) number_in_scene_order();
+    }
+
+    void add_sphere(const sphere<double>& x) {
+        cx.push_back(T(x.center.x)), cy.push_back(T(x.center.y)), cz.push_back(T(x.center.z));
+        radius.push_back(T(x.radius)), radius2.push_back(T(x.radius) * T(x.radius));
+    }
+
+    void add_plane(const plane<double>& x) {
+        // Scaled by a power of two first (exact), so that normalize's
+        // squares neither underflow nor overflow: a normal of any finite
+        // non-zero length gives the unit normal to within rounding.
+        const int k = formulations::direction_scale(x.normal);
+        const vec3d n = normalize(vec3d(std::ldexp(x.normal.x, k), std::ldexp(x.normal.y, k), std::ldexp(x.normal.z, k)));
+        px.push_back(T(x.point.x)), py.push_back(T(x.point.y)), pz.push_back(T(x.point.z));
+        nx.push_back(T(n.x)), ny.push_back(T(n.y)), nz.push_back(T(n.z));
+    }
+
+    void add_triangle(const triangle<double>& x) {
+        // Edges from the corners rounded to T, as the general path sees them.
+        vec3<T> a = convert<T>(x.a), e1 = convert<T>(x.b) - a, e2 = convert<T>(x.c) - a;
+        ax.push_back(a.x), ay.push_back(a.y), az.push_back(a.z);
+        e1x.push_back(e1.x), e1y.push_back(e1.y), e1z.push_back(e1.z);
+        e2x.push_back(e2.x), e2y.push_back(e2.y), e2z.push_back(e2.z);
+        // Centred on the centroid, through the farthest corner, made 1%
+        // larger so rounding in the cull test can never drop a hit.
+        const vec3d centre = (x.a + x.b + x.c) / 3.0;
+        const double r = 1.01 * std::max({length(x.a - centre), length(x.b - centre), length(x.c - centre)});
+        bx.push_back(T(centre.x)), by.push_back(T(centre.y)), bz.push_back(T(centre.z));
+        br2.push_back(T(r * r));
+    }
+
+    // original[i]: the scene's number of stored object i (spheres, then
+    // planes, then triangles, each kind in its tree's leaf order).
+    void number_in_scene_order() {
+        for (size_t j = 0; j < sphere_count; ++j) original.push_back(std::int64_t(sphere_tree.order[j]));
+        for (size_t j = 0; j < plane_count; ++j) original.push_back(std::int64_t(sphere_count + j));
+        for (size_t j = 0; j < triangle_count; ++j)
+            original.push_back(std::int64_t(sphere_count + plane_count + triangle_tree.order[j]));
+    }
+
+    // Float boxes that hold each object as the kernels see it, whatever the
+    // rounding: the exact box, rounded outwards to float, widened by
+    // 1e-6 of the scene's magnitude (float's own rounding of a coordinate
+    // or of a ray's origin and direction is 6e-8 of it). A box test in
+    // float can then only let through too much, never drop a hit, so the
+    // tree gives the same closest object and t as brute force.
+    void build_trees(const scene<double>& s, double magnitude) {
+        const double pad = 1e-6 * magnitude;
+        auto box_of = [&](vec3d lo, vec3d hi) {
+            bvh_box b;
+            for (int a = 0; a < 3; ++a) {
+                b.lo[a] = std::nextafter(float(lo[a] - pad), -infinity<float>);
+                b.hi[a] = std::nextafter(float(hi[a] + pad), infinity<float>);
+            }
+            return b;
+        };
+        std::vector<bvh_box> boxes(s.spheres.size());
+        for (size_t i = 0; i < boxes.size(); ++i) {
+            const auto& x = s.spheres[i];
+            boxes[i] = box_of(x.center - vec3d(x.radius), x.center + vec3d(x.radius));
+        }
+        sphere_tree = build_bvh(boxes);
+        boxes.assign(s.triangles.size(), bvh_box{});
+        for (size_t i = 0; i < boxes.size(); ++i) {
+            const auto& x = s.triangles[i];
+            boxes[i] = box_of(glm::min(x.a, glm::min(x.b, x.c)), glm::max(x.a, glm::max(x.b, x.c)));
+        }
+        triangle_tree = collapse_to_wide(build_bvh(boxes));
+    }
+};

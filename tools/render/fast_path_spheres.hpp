@@ -1,0 +1,149 @@
+// fast_path_spheres.hpp — part of fast_path.cpp (see fast_path_arrays.hpp):
+// the sphere kernels and their lane loops, for a packet's closest hits and
+// for one shadow ray's any hit.
+#pragma once
+#ifndef RT_FAST_PATH_PARTS
+#error "a part of fast_path.cpp: included by it, after its headers and its target pragma"
+#endif
+
+// c = |f|^2 - r^2 with the rounding error of each square added back (fma
+// gives a product's exact low half), so a large sphere seen from near its
+// surface, where |f|^2 and r^2 agree in most digits, keeps an accurate c.
+template <class T>
+inline T compensated_c(T fx, T fy, T fz, T r) {
+    const T xx = fx * fx, yy = fy * fy, zz = fz * fz, rr = r * r;
+    const T low = (std::fma(fx, fx, -xx) + std::fma(fy, fy, -yy) + std::fma(fz, fz, -zz)) - std::fma(r, r, -rr);
+    return ((xx - rr) + (yy + zz)) + low;
+}
+
+// c as the formulation wants it: plainly, or compensated for the robust test.
+template <class T, sphere_mode SM>
+inline T sphere_c(T fx, T fy, T fz, T r, T rr) {
+    return SM == sphere_mode::plain ? fx * fx + fy * fy + fz * fz - rr : compensated_c(fx, fy, fz, r);
+}
+
+// Just the discriminant of sphere_t (the same formula, so the same sign):
+// negative means the ray passes the sphere by. Used to skip a sphere that
+// no ray of a packet comes near, which at large N is almost every sphere.
+template <class T, sphere_mode SM>
+inline T sphere_discriminant(T fx, T fy, T fz, T c, T rr, T dx, T dy, T dz, T a, T inv_a) {
+    const T half_b = fx * dx + fy * dy + fz * dz;
+    if constexpr (SM == sphere_mode::plain) {
+        return half_b * half_b - a * c;
+    } else {
+        const T m = half_b * inv_a;
+        const T gx = fx - m * dx, gy = fy - m * dy, gz = fz - m * dz;
+        return a * (rr - (gx * gx + gy * gy + gz * gz));
+    }
+}
+
+// One sphere against one ray, with f = origin - centre, c = |f|^2 - r^2,
+// a = |d|^2. Returns the nearest t > tmin, or infinity. The radius is > 0
+// and at most 1e15 (the scene reader refuses anything else, and one that
+// rounds to 0 in float); r only enters squared, so this test itself would
+// answer a negative radius as if it were positive and a zero radius as a
+// point.
+template <class T, sphere_mode SM>
+inline T sphere_t(T fx, T fy, T fz, T c, T rr, T dx, T dy, T dz, T a, T inv_a, T tmin) {
+    const T half_b = fx * dx + fy * dy + fz * dz;
+    T disc, near, far;
+    if constexpr (SM == sphere_mode::plain) {
+        // The plain quadratic: cheapest, loses digits as (distance / radius)^2.
+        disc = half_b * half_b - a * c;
+        const T root = std::sqrt(disc);  // NaN when disc < 0: that lane's answer is dropped below
+        near = (-half_b - root) * inv_a;
+        far = (-half_b + root) * inv_a;
+    } else {
+        // The perpendicular foot g = f - (half_b / a) d is formed before
+        // squaring, then the stable root pair c / q and q / a.
+        const T m = half_b * inv_a;
+        const T gx = fx - m * dx, gy = fy - m * dy, gz = fz - m * dz;
+        disc = a * (rr - (gx * gx + gy * gy + gz * gz));
+        const T root = std::sqrt(disc);
+        const T q = -(half_b + std::copysign(root, half_b));
+        const T r1 = c / q, r2 = q * inv_a;
+        near = r1 < r2 ? r1 : r2;
+        far = r1 < r2 ? r2 : r1;
+    }
+    const T t = near > tmin ? near : far;
+    return ((disc >= T(0)) & (t > tmin)) ? t : infinity<T>;
+}
+
+// Sphere i against a packet whose rays share the origin of lane 0: f and c
+// leave the lane loop. Cull first: the full test (square root, division,
+// the update of the closest hit) only when some ray of the packet passes
+// within the sphere's radius.
+template <class T, sphere_mode SM>
+[[gnu::always_inline]] inline void sphere_closest_common_origin(const soa_scene<T>& s, size_t i, const packet<T>& p, T tmin,
+                                         packet_best<T>& best) {
+    const T fx = p.ox[0] - s.cx[i], fy = p.oy[0] - s.cy[i], fz = p.oz[0] - s.cz[i], rr = s.radius2[i];
+    const T c = sphere_c<T, SM>(fx, fy, fz, s.radius[i], rr);
+    int near_any = 0;
+    for (int k = 0; k < W; ++k)
+        near_any |= int(sphere_discriminant<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], best.a[k],
+                                                   best.inv_a[k]) >= T(0));
+    if (!near_any) return;
+    for (int k = 0; k < W; ++k)
+        best.keep(k, sphere_t<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], best.a[k], best.inv_a[k], tmin),
+                  index_t<T>(i));
+}
+
+// The same for rays with origins of their own (an orthographic camera).
+template <class T, sphere_mode SM>
+[[gnu::always_inline]] inline void sphere_closest_own_origins(const soa_scene<T>& s, size_t i, const packet<T>& p, T tmin,
+                                       packet_best<T>& best) {
+    const T cx = s.cx[i], cy = s.cy[i], cz = s.cz[i], r = s.radius[i], rr = s.radius2[i];
+    int near_any = 0;
+    for (int k = 0; k < W; ++k) {
+        const T fx = p.ox[k] - cx, fy = p.oy[k] - cy, fz = p.oz[k] - cz;
+        const T c = fx * fx + fy * fy + fz * fz - rr;  // only the plain form's sign test uses it
+        near_any |= int(sphere_discriminant<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], best.a[k],
+                                                   best.inv_a[k]) >= T(0));
+    }
+    if (!near_any) return;
+    for (int k = 0; k < W; ++k) {
+        const T fx = p.ox[k] - cx, fy = p.oy[k] - cy, fz = p.oz[k] - cz;
+        const T c = sphere_c<T, SM>(fx, fy, fz, r, rr);
+        best.keep(k, sphere_t<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], best.a[k], best.inv_a[k], tmin),
+                  index_t<T>(i));
+    }
+}
+
+// Spheres [begin, end) against the packet.
+template <class T, sphere_mode SM, bool CommonOrigin>
+[[gnu::always_inline]] inline void spheres_closest(const soa_scene<T>& s, size_t begin, size_t end, const packet<T>& p, T tmin,
+                            packet_best<T>& best) {
+    for (size_t i = begin; i < end; ++i) {
+        if constexpr (CommonOrigin)
+            sphere_closest_common_origin<T, SM>(s, i, p, tmin, best);
+        else
+            sphere_closest_own_origins<T, SM>(s, i, p, tmin, best);
+    }
+}
+
+// One shadow ray against sphere j: is it hit with tmin < t < tmax?
+template <class T, sphere_mode SM>
+[[gnu::always_inline]] inline bool sphere_blocks(const soa_scene<T>& s, size_t j, const shadow_ray<T>& r, T tmin, T tmax) {
+    const T fx = r.ox - s.cx[j], fy = r.oy - s.cy[j], fz = r.oz - s.cz[j];
+    const T c = sphere_c<T, SM>(fx, fy, fz, s.radius[j], s.radius2[j]);
+    return sphere_t<T, SM>(fx, fy, fz, c, s.radius2[j], r.dx, r.dy, r.dz, r.a, r.inv_a, tmin) < tmax;
+}
+
+// Is the shadow ray blocked by a sphere? With a tree, only the leaves whose
+// boxes the ray crosses, one sphere at a time; without, groups of
+// shadow_group spheres in lanes.
+template <class T, sphere_mode SM>
+[[gnu::always_inline]] inline bool spheres_block(const soa_scene<T>& s, const shadow_ray<T>& r, T tmin, T tmax) {
+    if (s.tree)
+        return traverse_any(s.sphere_tree, r.origin, r.direction, tmax, [&](size_t b, size_t e) {
+            for (size_t j = b; j < e; ++j)
+                if (sphere_blocks<T, SM>(s, j, r, tmin, tmax)) return true;
+            return false;
+        });
+    for (size_t i = 0; i < shadow_groups(s.sphere_count); i += shadow_group) {
+        int blocked = 0;
+        for (int k = 0; k < shadow_group; ++k) blocked |= int(sphere_blocks<T, SM>(s, i + size_t(k), r, tmin, tmax));
+        if (blocked) return true;
+    }
+    return false;
+}

@@ -1,0 +1,219 @@
+// fast_path_traversal.hpp — part of fast_path.cpp (see fast_path_arrays.hpp):
+// the walks through the trees. The slab test's float arithmetic, a packet's
+// walk of the binary tree, one shadow ray's walk of it, and one ray's walk
+// of the 4-wide tree.
+#pragma once
+#ifndef RT_FAST_PATH_PARTS
+#error "a part of fast_path.cpp: included by it, after its headers and its target pragma"
+#endif
+
+// A ray direction's reciprocal for the slab test. A zero component becomes
+// 1e30 instead of infinity: (box side - origin) * 1e30 is then 0 or huge,
+// never 0 * infinity = NaN, and the ray counts as between the planes of a
+// slab it lies in (conservative: it is tested against the box's objects).
+inline float slab_reciprocal(float d) {
+    return d == 0.0f ? std::copysign(1e30f, d) : 1.0f / d;
+}
+
+// The far end of a slab interval is widened by a few units in the last
+// place (Ize, "Robust BVH Ray Traversal", JCGT 2013), so a rounded exit
+// never falls just short of a rounded entry for a ray that grazes a box.
+constexpr float slab_widen = 1.0f + 4 * std::numeric_limits<float>::epsilon();
+
+// The packet's rays in float, as the slab tests of traverse_packet use them.
+struct packet_slabs {
+    alignas(64) float ox[W], oy[W], oz[W], ix[W], iy[W], iz[W];
+
+    template <class T>
+    [[gnu::always_inline]] explicit packet_slabs(const packet<T>& p) {
+        for (int k = 0; k < W; ++k) {
+            ox[k] = float(p.ox[k]), oy[k] = float(p.oy[k]), oz[k] = float(p.oz[k]);
+            ix[k] = slab_reciprocal(float(p.dx[k])), iy[k] = slab_reciprocal(float(p.dy[k])),
+            iz[k] = slab_reciprocal(float(p.dz[k]));
+        }
+    }
+
+    // Does some ray k of the packet enter box b before best_t[k]?
+    template <class T>
+    [[gnu::always_inline]] bool opened(const bvh_box& b, const T* best_t) const {
+        int any = 0;
+        for (int k = 0; k < W; ++k) {
+            const float x0 = (b.lo[0] - ox[k]) * ix[k], x1 = (b.hi[0] - ox[k]) * ix[k];
+            const float y0 = (b.lo[1] - oy[k]) * iy[k], y1 = (b.hi[1] - oy[k]) * iy[k];
+            const float z0 = (b.lo[2] - oz[k]) * iz[k], z1 = (b.hi[2] - oz[k]) * iz[k];
+            const float enter = std::max(std::max(std::min(x0, x1), std::min(y0, y1)), std::max(std::min(z0, z1), 0.0f));
+            const float leave = std::min(std::min(std::max(x0, x1), std::max(y0, y1)), std::max(z0, z1)) * slab_widen;
+            // best_t in float, rounded up a little: never below the true value.
+            const float limit = float(best_t[k]) * slab_widen;
+            any |= int((enter <= leave) & (enter <= limit));
+        }
+        return any != 0;
+    }
+};
+
+// Depth-first walk of a tree for the 32 rays of a packet. A node is
+// opened when some ray of the packet enters its box before that ray's
+// closest hit so far (best_t, updated by the leaves as they run); leaf(b, e)
+// tests objects [b, e). Children are visited near one first, judged along
+// the first ray's direction, so the closest hits come early and the far
+// child's box is then often passed by.
+template <class T, class Leaf>
+[[gnu::always_inline]] inline void traverse_packet(const bvh_tree& tree, const packet<T>& p, const T* best_t, Leaf&& leaf) {
+    if (tree.nodes.empty()) return;
+    const packet_slabs slabs(p);
+    const float d0[3] = {float(p.dx[0]), float(p.dy[0]), float(p.dz[0])};
+    std::uint32_t stack[256];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const bvh_node& n = tree.nodes[stack[--top]];
+        if (!slabs.opened(n.box, best_t)) continue;
+        if (n.count > 0) {
+            leaf(size_t(n.first), size_t(n.first) + n.count);
+            continue;
+        }
+        const bvh_box &l = tree.nodes[n.first].box, &r = tree.nodes[n.first + 1].box;
+        float towards = 0;  // > 0 when the left child lies further along d0
+        for (int a = 0; a < 3; ++a) towards += ((l.lo[a] + l.hi[a]) - (r.lo[a] + r.hi[a])) * d0[a];
+        // Pushed last is visited first: the near child.
+        stack[top++] = towards > 0 ? n.first : n.first + 1;
+        stack[top++] = towards > 0 ? n.first + 1 : n.first;
+    }
+}
+
+// The same walk for one ray that only asks whether anything blocks it:
+// blocked(b, e) tests objects [b, e) and the walk stops at the first yes.
+template <class T, class Blocked>
+[[gnu::always_inline]] inline bool traverse_any(const bvh_tree& tree, const T (&origin)[3], const T (&direction)[3], T tmax, Blocked&& blocked) {
+    if (tree.nodes.empty()) return false;
+    const float o[3] = {float(origin[0]), float(origin[1]), float(origin[2])};
+    const float d[3] = {float(direction[0]), float(direction[1]), float(direction[2])};
+    const float inv[3] = {slab_reciprocal(d[0]), slab_reciprocal(d[1]), slab_reciprocal(d[2])};
+    const float limit = float(tmax) * slab_widen;
+    auto opened = [&](const bvh_box& b) {
+        float enter = 0, leave = limit;
+        for (int a = 0; a < 3; ++a) {
+            const float t0 = (b.lo[a] - o[a]) * inv[a], t1 = (b.hi[a] - o[a]) * inv[a];
+            enter = std::max(enter, std::min(t0, t1));
+            leave = std::min(leave, std::max(t0, t1) * slab_widen);
+        }
+        return enter <= leave;
+    };
+    std::uint32_t stack[256];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const bvh_node& n = tree.nodes[stack[--top]];
+        if (!opened(n.box)) continue;
+        if (n.count > 0) {
+            if (blocked(size_t(n.first), size_t(n.first) + n.count)) return true;
+            continue;
+        }
+        stack[top++] = n.first;
+        stack[top++] = n.first + 1;
+    }
+    return false;
+}
+
+// Four floats, one per child of a wide node: gcc's vector extension, which
+// each copy of this file compiles for its own instruction set (SSE, part
+// of every x86-64, holds four).
+typedef float f4 __attribute__((vector_size(16)));
+
+inline f4 row(const float (&r)[wide]) {
+    f4 v;
+    std::memcpy(&v, r, sizeof v);
+    return v;
+}
+
+// A wide node's child on traverse_wide's stack: where the ray enters its box.
+struct wide_entry {
+    float enter;
+    std::uint32_t child, count;
+};
+
+// One ray in float, as traverse_wide's slab tests use it.
+struct wide_ray {
+    float o[3], inv[3];
+    bool negative[3];
+
+    template <class T>
+    [[gnu::always_inline]] wide_ray(const T (&origin)[3], const T (&direction)[3]) {
+        for (int a = 0; a < 3; ++a) {
+            o[a] = float(origin[a]);
+            inv[a] = slab_reciprocal(float(direction[a]));
+            negative[a] = inv[a] < 0;
+        }
+    }
+
+    // The children of n the ray enters before limit, into hit[], sorted
+    // farthest first; returns how many. The ray's slab intervals with the
+    // four child boxes are computed together. The near side of a slab is
+    // the box's low side when the direction component is positive
+    // (reciprocal >= 0) and its high side otherwise, so no min/max is
+    // needed; an empty slot's box (low +inf, high -inf) then gives entry
+    // +inf and exit -inf and is never entered.
+    [[gnu::always_inline]] int entered(const bvh_wide_node& n, float limit, wide_entry (&hit)[wide]) const {
+        f4 enter = {0, 0, 0, 0}, leave = {limit, limit, limit, limit};
+        for (int a = 0; a < 3; ++a) {
+            const f4 lo = row(n.lo[a]), hi = row(n.hi[a]);
+            const f4 t0 = ((negative[a] ? hi : lo) - o[a]) * inv[a];
+            const f4 t1 = ((negative[a] ? lo : hi) - o[a]) * inv[a] * slab_widen;
+            enter = enter > t0 ? enter : t0;
+            leave = leave < t1 ? leave : t1;
+        }
+        const auto in = enter <= leave;
+        int h = 0;
+        for (int i = 0; i < wide; ++i) {  // at most four: insertion sort
+            if (!in[i]) continue;
+            const wide_entry c{enter[i], n.child[i], n.count[i]};
+            int j = h++;
+            for (; j > 0 && hit[j - 1].enter < c.enter; --j) hit[j] = hit[j - 1];
+            hit[j] = c;
+        }
+        return h;
+    }
+};
+
+// Depth-first walk of a wide tree for one ray, nearest child first. Of the
+// children a node's ray enters before its current limit, all but the
+// nearest are pushed, farthest first, each with its entry distance, and the
+// walk goes on at the nearest without a trip through the stack; a child
+// popped later is skipped unopened when the ray has meanwhile found a hit
+// nearer than its entry. leaf(first, count) tests a leaf's objects; for
+// closest hit (AnyHit false) it updates `best`, the limit; for any hit it
+// returns true at a blocker.
+template <bool AnyHit, class T, class Leaf>
+[[gnu::always_inline]] inline bool traverse_wide(const bvh_wide_tree& tree, const T (&origin)[3], const T (&direction)[3], const T& best,
+                   Leaf&& leaf) {
+    if (tree.nodes.empty()) return false;
+    const wide_ray r(origin, direction);
+    // best in float, rounded up a little: never below the true value.
+    float limit = float(best) * slab_widen;
+    wide_entry stack[512];  // at most wide - 1 per level and the tree is at most ~130 levels deep
+    int top = 0;
+    wide_entry current{0.0f, 0, 0};  // the root
+    for (;;) {
+        if (current.count > 0) {
+            if constexpr (AnyHit) {
+                if (leaf(current.child, current.count)) return true;
+            } else {
+                leaf(current.child, current.count);
+                limit = float(best) * slab_widen;
+            }
+        } else {
+            wide_entry hit[wide];
+            const int h = r.entered(tree.nodes[current.child], limit, hit);
+            if (h > 0) {
+                for (int i = 0; i < h - 1; ++i) stack[top++] = hit[i];
+                current = hit[h - 1];
+                continue;
+            }
+        }
+        // Next from the stack, skipping what lies beyond a hit found since it was pushed.
+        do {
+            if (top == 0) return false;
+            current = stack[--top];
+        } while (current.enter > limit);
+    }
+}

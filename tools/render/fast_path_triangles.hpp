@@ -1,0 +1,173 @@
+// fast_path_triangles.hpp — part of fast_path.cpp (see fast_path_arrays.hpp):
+// the triangle lane loops (the kernels, triangle_t and triangle_t_exact,
+// are in fast_path_kernels.hpp): brute force over a packet, one ray's walk
+// of the wide tree, and the shadow ray's any hit. All three run the same
+// per-lane arithmetic (triangle_lane_t), so they agree to the bit.
+#pragma once
+#ifndef RT_FAST_PATH_PARTS
+#error "a part of fast_path.cpp: included by it, after its headers and its target pragma"
+#endif
+
+// One ray against the scene's triangle j, by the brute-force kernel: the
+// per-lane work of every triangle loop below (brute force, the tree's leaves
+// and the shadow test), written once so they stay the same to the bit.
+template <class T>
+[[gnu::always_inline]] inline T triangle_lane_t(const soa_scene<T>& s, size_t j, T ox, T oy, T oz, T dx, T dy, T dz,
+                                                T d_max, T tmin, int& unsure) {
+    const T sx = ox - s.ax[j], sy = oy - s.ay[j], sz = oz - s.az[j];
+    const T qx = sy * s.e1z[j] - sz * s.e1y[j], qy = sz * s.e1x[j] - sx * s.e1z[j], qz = sx * s.e1y[j] - sy * s.e1x[j];
+    const T flat_bound = flat_scale(s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j], s.e2z[j]) * d_max + flat_tiny<T>();
+    return triangle_t(sx, sy, sz, qx, qy, qz, s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j], s.e2z[j], dx, dy, dz,
+                      tmin, flat_bound, unsure);
+}
+
+// triangle_t_exact for the scene's triangle j (j < triangle_count): the
+// scalar path for the rare lanes triangle_t was unsure of.
+template <class T>
+T triangle_exact_t(const soa_scene<T>& s, size_t j, T ox, T oy, T oz, T dx, T dy, T dz, T tmin) {
+    const T sx = ox - s.ax[j], sy = oy - s.ay[j], sz = oz - s.az[j];
+    const T qx = sy * s.e1z[j] - sz * s.e1y[j], qy = sz * s.e1x[j] - sx * s.e1z[j], qz = sx * s.e1y[j] - sy * s.e1x[j];
+    const std::array<vec3<T>, 3> c = s.corners(j);
+    return triangle_t_exact(sx, sy, sz, qx, qy, qz, s.e1x[j], s.e1y[j], s.e1z[j], s.e2x[j], s.e2y[j], s.e2z[j], dx, dy,
+                            dz, tmin, c[0], c[1], c[2]);
+}
+
+// One ray against the triangles [g, g + leaf_lanes) of a tree's leaf that
+// ends at e (lanes from e on, other leaves' triangles or padding, give
+// infinity): t[i] for triangle g + i, by the brute-force kernel in
+// leaf_lanes lanes, then triangle_t_exact for the whole group when a lane
+// was unsure (as the brute-force loops do), so t is the same to the bit.
+template <class T>
+struct triangle_group {
+    alignas(64) T t[leaf_lanes];
+
+    triangle_group(const soa_scene<T>& s, size_t g, size_t e, T ox, T oy, T oz, T dx, T dy, T dz, T d_max, T tmin) {
+        int unsure = 0;
+        for (int i = 0; i < leaf_lanes; ++i) {
+            const size_t j = g + size_t(i);
+            const T x = triangle_lane_t(s, j, ox, oy, oz, dx, dy, dz, d_max, tmin, unsure);
+            t[i] = j < e ? x : infinity<T>;
+        }
+        if (!unsure) return;
+        for (int i = 0; i < leaf_lanes; ++i) {  // nearly parallel or degenerate: decide exactly
+            const size_t j = g + size_t(i);
+            if (j >= e) break;
+            t[i] = triangle_exact_t(s, j, ox, oy, oz, dx, dy, dz, tmin);
+        }
+    }
+
+    bool blocked_before(T tmax) const {
+        int blocked = 0;
+        for (int i = 0; i < leaf_lanes; ++i) blocked |= int(t[i] < tmax);
+        return blocked != 0;
+    }
+};
+
+// Does some ray of the packet come near triangle i's bounding sphere? (The
+// robust discriminant: accurate even when the triangle is small and far away.)
+template <class T, bool CommonOrigin>
+[[gnu::always_inline]] inline bool triangle_near_packet(const soa_scene<T>& s, size_t i, const packet<T>& p, const packet_best<T>& best) {
+    int near_any = 0;
+    for (int k = 0; k < W; ++k) {
+        const int o = CommonOrigin ? 0 : k;
+        const T fx = p.ox[o] - s.bx[i], fy = p.oy[o] - s.by[i], fz = p.oz[o] - s.bz[i];
+        near_any |= int(sphere_discriminant<T, sphere_mode::robust>(fx, fy, fz, T(0), s.br2[i], p.dx[k], p.dy[k],
+                                                                    p.dz[k], best.a[k], best.inv_a[k]) >= T(0));
+    }
+    return near_any != 0;
+}
+
+// Triangle i against the packet, skipped when no ray comes near it. With a
+// common origin, s = origin - a and q = s x e1 leave the lane loop.
+template <class T, bool CommonOrigin>
+[[gnu::always_inline]] inline void triangle_closest(const soa_scene<T>& s, size_t i, const packet<T>& p, T tmin, packet_best<T>& best) {
+    using I = index_t<T>;
+    const I id = I(s.sphere_count + s.plane_count) + I(i);
+    if (!triangle_near_packet<T, CommonOrigin>(s, i, p, best)) return;
+    const T e1x = s.e1x[i], e1y = s.e1y[i], e1z = s.e1z[i], e2x = s.e2x[i], e2y = s.e2y[i], e2z = s.e2z[i];
+    const T scale = flat_scale(e1x, e1y, e1z, e2x, e2y, e2z), tiny = flat_tiny<T>();
+    int unsure = 0;
+    if constexpr (CommonOrigin) {
+        const T sx = p.ox[0] - s.ax[i], sy = p.oy[0] - s.ay[i], sz = p.oz[0] - s.az[i];
+        const T qx = sy * e1z - sz * e1y, qy = sz * e1x - sx * e1z, qz = sx * e1y - sy * e1x;
+        for (int k = 0; k < W; ++k)
+            best.keep(k,
+                      triangle_t(sx, sy, sz, qx, qy, qz, e1x, e1y, e1z, e2x, e2y, e2z, p.dx[k], p.dy[k], p.dz[k], tmin,
+                                 scale * best.d_max[k] + tiny, unsure),
+                      id);
+    } else {
+        for (int k = 0; k < W; ++k) {
+            const T sx = p.ox[k] - s.ax[i], sy = p.oy[k] - s.ay[i], sz = p.oz[k] - s.az[i];
+            const T qx = sy * e1z - sz * e1y, qy = sz * e1x - sx * e1z, qz = sx * e1y - sy * e1x;
+            best.keep(k,
+                      triangle_t(sx, sy, sz, qx, qy, qz, e1x, e1y, e1z, e2x, e2y, e2z, p.dx[k], p.dy[k], p.dz[k], tmin,
+                                 scale * best.d_max[k] + tiny, unsure),
+                      id);
+        }
+    }
+    if (unsure)  // nearly parallel or degenerate: decide exactly (keep takes a t once)
+        for (int k = 0; k < W; ++k) {
+            const int o = CommonOrigin ? 0 : k;
+            best.keep(k, triangle_exact_t(s, i, p.ox[o], p.oy[o], p.oz[o], p.dx[k], p.dy[k], p.dz[k], tmin), id);
+        }
+}
+
+// One ray at a time through the wide tree (see soa_scene). A leaf's
+// triangles are tested as one group of leaf_lanes lanes with the
+// brute-force arithmetic, so t is the same to the bit.
+template <class T, bool CommonOrigin>
+[[gnu::always_inline]] inline void triangles_closest_in_tree(const soa_scene<T>& s, const packet<T>& p, T tmin, packet_best<T>& best) {
+    using I = index_t<T>;
+    const I base = I(s.sphere_count + s.plane_count);
+    for (int k = 0; k < W; ++k) {
+        const int o = CommonOrigin ? 0 : k;
+        const T ox = p.ox[o], oy = p.oy[o], oz = p.oz[o], dx = p.dx[k], dy = p.dy[k], dz = p.dz[k];
+        const T origin[3] = {ox, oy, oz}, direction[3] = {dx, dy, dz};
+        T bt = best.t[k];
+        I bo = best.object[k];
+        traverse_wide<false>(s.triangle_tree, origin, direction, bt, [&](std::uint32_t b, std::uint32_t n) {
+            for (size_t g = b; g < size_t(b) + n; g += leaf_lanes) {
+                const triangle_group<T> group(s, g, size_t(b) + n, ox, oy, oz, dx, dy, dz, best.d_max[k], tmin);
+                for (int i = 0; i < leaf_lanes; ++i)
+                    if (group.t[i] < bt) bt = group.t[i], bo = base + I(g) + I(i);
+            }
+            return false;
+        });
+        best.t[k] = bt, best.object[k] = bo;
+    }
+}
+
+// Every triangle against the packet.
+template <class T, bool CommonOrigin>
+[[gnu::always_inline]] inline void triangles_closest(const soa_scene<T>& s, const packet<T>& p, T tmin, packet_best<T>& best) {
+    if (s.tree) {
+        triangles_closest_in_tree<T, CommonOrigin>(s, p, tmin, best);
+        return;
+    }
+    for (size_t i = 0; i < s.triangle_count; ++i) triangle_closest<T, CommonOrigin>(s, i, p, tmin, best);
+}
+
+// Is the shadow ray blocked by a triangle? The wide tree's leaves, or
+// brute force's groups of shadow_group triangles.
+template <class T>
+[[gnu::always_inline]] inline bool triangles_block(const soa_scene<T>& s, const shadow_ray<T>& r, T tmin, T tmax) {
+    if (s.tree)
+        return traverse_wide<true>(s.triangle_tree, r.origin, r.direction, tmax, [&](std::uint32_t b, std::uint32_t n) {
+            const size_t e = size_t(b) + n;
+            for (size_t g = b; g < e; g += leaf_lanes)
+                if (triangle_group<T>(s, g, e, r.ox, r.oy, r.oz, r.dx, r.dy, r.dz, r.d_max, tmin).blocked_before(tmax))
+                    return true;
+            return false;
+        });
+    for (size_t i = 0; i < shadow_groups(s.triangle_count); i += shadow_group) {
+        int blocked = 0, unsure = 0;
+        for (int k = 0; k < shadow_group; ++k)
+            blocked |= int(triangle_lane_t(s, i + size_t(k), r.ox, r.oy, r.oz, r.dx, r.dy, r.dz, r.d_max, tmin,
+                                           unsure) < tmax);
+        if (unsure && !blocked)  // nearly parallel or degenerate: decide exactly
+            for (size_t j = i; j < i + shadow_group && j < s.triangle_count; ++j)  // past the count: padding
+                blocked |= int(triangle_exact_t(s, j, r.ox, r.oy, r.oz, r.dx, r.dy, r.dz, tmin) < tmax);
+        if (blocked) return true;
+    }
+    return false;
+}
