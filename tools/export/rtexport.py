@@ -39,7 +39,9 @@ KIT_ALLOW = [
 KIT_DENY = ["*/__pycache__/*", "*.pyc", "*/.DS_Store",
             "/tests/scenes/scene_plan_test.cpp",    # tests tools/render, which is not in the kit
             "/tools/grader/README.md",              # the instructor's manual: the kit's README says how to preview
-            "/tools/grader/screenshots/*"]          # its pictures
+            "/tools/grader/screenshots/*",          # its pictures
+            "/tools/grader/results/*",              # where and when the instructor's figures were measured
+            "/tests/support/rpc/README.md"]         # the judge/runner layer's page for contributors
 PRIVATE = ["solutions", "tests/hidden", "tests/fixtures"]
 
 # What may ship, by kind: every file of a written kit must match one of these
