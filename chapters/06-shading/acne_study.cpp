@@ -5,11 +5,13 @@
 // intersect_sphere); every hit the light can see sends its shadow ray back
 // at the same sphere. A convex sphere can never truly shadow its own lit
 // side, so every such hit is shadow acne. The origin is moved along the
-// normal by either k * epsilon * max(1, |x|, |y|, |z|) (the course's rule,
-// for several k) or a fixed distance (the tempting shortcut).
+// normal either by the course's rule with k epsilons in place of
+// shadow_offset_epsilons (your shadow_ray_origin's step, scaled by
+// k / shadow_offset_epsilons) or by a fixed distance (the tempting shortcut).
 //
 //   ch06-acne-study            prints one line per sphere, precision and offset
 #include "02-sphere/sphere.hpp"
+#include "06-shading/shading.hpp"
 
 #include "common/stub.hpp"
 
@@ -29,9 +31,11 @@ struct offset_rule {
     T amount = 0;        // k, or the fixed distance
 
     vec3<T> apply(const vec3<T>& p, const vec3<T>& unit_normal) const {
-        const T magnitude = std::max({T(1), std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
-        const T offset = scaled ? amount * std::numeric_limits<T>::epsilon() * magnitude : amount;
-        return p + offset * unit_normal;
+        if (!scaled) return p + amount * unit_normal;
+        // Your chapter 06 shadow_ray_origin steps shadow_offset_epsilons<T> epsilons (of the point's
+        // scale) towards the light, here on the normal's side; k epsilons is that step times k / 128.
+        const vec3<T> step = ch06::shadow_ray_origin(p, unit_normal, unit_normal) - p;
+        return p + (amount / ch06::shadow_offset_epsilons<T>) * step;
     }
 };
 

@@ -117,6 +117,39 @@ class KitFiles(KitTest):
         shutil.copy(hidden, os.path.join(spoiled, "tests", "public", "extra_test.cpp"))
         self.assertNotEqual(rtexport.leak_check(spoiled), [], f"the leak check misses a copy of {hidden}")
 
+    def test_the_answer_check_finds_nothing(self):
+        self.assertEqual(rtexport.answer_check(self.kit), [])
+
+    def test_the_answer_check_catches_an_answer_written_again(self):
+        # The two kinds once shipped: a public test helper whose brute force was chapter 03's loop,
+        # and a study program whose offset rule was shadow_ray_origin's formula, with other names.
+        brute_force = """
+template <class T>
+std::optional<hit_record<T>> brute_force(const objects<T>& scene, const ray<T>& r, interval<T> range) {
+    std::optional<hit_record<T>> best;
+    for (int i = 0; i < scene.count(); ++i)
+        if (auto hit = scene.test(i, r, range)) {
+            hit->object = i;
+            range.max = hit->t;
+            best = hit;
+        }
+    return best;
+}
+"""
+        offset_rule = """
+template <class T>
+vec3<T> apply(const vec3<T>& p, const vec3<T>& unit_normal, T amount) {
+    const T magnitude = std::max({T(1), std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+    return p + amount * std::numeric_limits<T>::epsilon() * magnitude * unit_normal;
+}
+"""
+        for rel, code in (("tests/public/ch08_scenes.hpp", brute_force), ("chapters/06-shading/acne_study.cpp", offset_rule)):
+            spoiled = self.spoiled_copy()
+            with open(os.path.join(spoiled, rel), "a") as f:
+                f.write(code)
+            problems = rtexport.answer_check(spoiled)
+            self.assertTrue(any(p.startswith(rel) for p in problems), f"the answer check misses an answer in {rel}: {problems}")
+
     def test_the_ship_check_names_a_file_not_on_the_list(self):
         # The renderer's fast path, or a helper next to a chapter's exercise.
         chapter = sorted(glob.glob(os.path.join(self.kit, "chapters", "[0-9][0-9]-*")))[-1]

@@ -251,7 +251,7 @@ def export_kit(out, repo=REPO, log=print):
             f.write("\n")
     for template, name in (("README.md", "README.md"), ("gitignore", ".gitignore")):
         shutil.copyfile(os.path.join(TEMPLATES, template), os.path.join(out, name))
-    problems = ship_check(out) + leak_check(out, repo)
+    problems = ship_check(out) + leak_check(out, repo) + answer_check(out, repo)
     if problems:
         raise SystemExit("kit: LEAK CHECK FAILED, the kit is not safe to hand out:\n" + "\n".join(problems[:50]))
     count = sum(len(names) for _, _, names in os.walk(out))
@@ -345,6 +345,132 @@ def leak_check(kit, repo=REPO):
         for name, origin in hidden_names.items():
             if name in text:
                 problems.append(f"{rel} names the hidden test '{name}' ({origin})")
+    return problems
+
+
+# --- The answer check -------------------------------------------------------------------------
+#
+# The leak check finds private lines pasted into the kit. An exercise's answer written again with
+# other names (a test helper's brute force that is chapter 03's loop, a study program's offset that
+# is shadow_ray_origin's formula) shares no line with the solution, but its statements are the
+# solution's once the names are taken out. So every code file of the kit is compared, statement by
+# statement with local names replaced by one placeholder, with the solutions: a long statement of a
+# solution, or a run of consecutive ones, is an answer in the kit. Statements a solution shares with
+# the kit's chapter headers and stubs (declarations, explicit instantiations) prove nothing.
+ANSWER_STATEMENT = 64   # characters, names taken out: one solution statement this long is an answer
+ANSWER_RUN = 3          # or this many consecutive solution statements, two of them its own...
+ANSWER_RUN_CHARS = 36   # ...with this many characters together
+# ...as long as one of them touches the course's own data (a member that is not a standard
+# container's: .t, ->object, .max, .x), so that idioms such as a stack loop prove nothing.
+_CONTAINER_MEMBERS = set("""back begin clear data emplace emplace_back empty end erase find front insert pop_back
+    push_back reserve resize size swap value has_value""".split())
+_KEEP_WORDS = set("""alignas auto bool break case catch char class const constexpr continue default delete do double
+    else enum explicit false float for if inline int long namespace new noexcept nullptr operator private protected
+    public return short signed sizeof static static_cast struct switch template this throw true try typename union
+    unsigned using virtual void volatile while T size_t""".split())
+_CODE_FILE = (".cpp", ".hpp", ".h", ".cc")
+
+
+def _code_of(text):
+    """The text without comments, string and character literals and preprocessor lines."""
+    out, i, n = [], 0, len(text)
+    while i < n:
+        c = text[i]
+        if text.startswith("//", i):
+            j = text.find("\n", i)
+            i = n if j < 0 else j
+        elif text.startswith("/*", i):
+            j = text.find("*/", i + 2)
+            i = n if j < 0 else j + 2
+            out.append(" ")
+        elif c in "\"'":
+            j = i + 1
+            while j < n and text[j] != c:
+                j += 2 if text[j] == "\\" else 1
+            out.append(c + c)
+            i = j + 1
+        else:
+            out.append(c)
+            i += 1
+    return "\n".join(line for line in "".join(out).splitlines() if not line.lstrip().startswith("#"))
+
+
+def _statements(text):
+    """The code's statements (split after ';', and after '{' and '}' at the end of a line), whitespace collapsed, local names replaced by 'ID'
+    (a name after '.', '->' or '::', before '::' or '(', or a keyword, stays)."""
+    def name(m):
+        word, before, after = m.group(0), text_[max(0, m.start() - 2):m.start()], text_[m.end():m.end() + 2]
+        if word in _KEEP_WORDS or before.endswith(".") or before == "->" or before == "::" or \
+                after == "::" or after.startswith("("):
+            return word
+        return "ID"
+    # Split after ';' outside parentheses (a for header stays whole) and after '{' or '}' at a line's end.
+    code, pieces, depth, start = _code_of(text), [], 0, 0
+    for i, c in enumerate(code):
+        depth += (c == "(") - (c == ")")
+        if (c == ";" and depth <= 0) or (c in "{}" and code[i + 1:i + 2] in ("", "\n")):
+            pieces.append(code[start:i + 1])
+            start = i + 1
+    pieces.append(code[start:])
+    statements = []
+    for piece in pieces:
+        text_ = " ".join(piece.split())
+        if text_ in ("", "{", "}", "};"):
+            continue
+        statements.append(re.sub(r"[A-Za-z_]\w*", name, text_))
+    return statements
+
+
+def answer_check(kit, repo=REPO):
+    """Problems found: kit code files holding an exercise's statements written again with other names."""
+    def statements_of(root, rel):
+        lines, _ = _text_lines(os.path.join(root, rel))
+        return _statements("\n".join(lines or []))
+    sources = _chapter_sources(kit)
+    stubs = [f for f, kind in sources.items() if kind == "chapter exercises (stubs)"]
+    # The exercises' own files in the solutions (solutions/NN-name/FILE for each stub), not the
+    # solutions' study tools.
+    answers = [os.path.join("solutions", os.path.relpath(f, "chapters")) for f in stubs]
+    answers = [f for f in answers if os.path.isfile(os.path.join(repo, f))]
+    if not answers:
+        return []
+    # What an answer legitimately shares with the kit: its chapter's header and stub, and the shared
+    # vocabulary of common/ and the test support (a run of statements may pass through them, but
+    # must hold one of the answer's own).
+    shared = set()
+    for top in ("chapters", "common", os.path.join("tests", "support")):
+        for f in _walk(kit, top):
+            if f.endswith(_CODE_FILE) and (f.endswith((".hpp", ".h")) or f in stubs or not f.startswith("chapters")):
+                shared.update(statements_of(kit, f))
+    where, follows = {}, set()   # each answer statement's file, and which statement follows which
+    for f in answers:
+        statements = statements_of(repo, f)
+        follows.update(zip(statements, statements[1:]))
+        for st in statements:
+            where.setdefault(st, f)
+    def own(statement):   # one of the answer's own statements: not shared, and not a loop or branch head
+        return statement not in shared and not re.match(r"(for|while|if|else|switch|do)\b", statement)
+
+    def touches_data(statement):
+        return any(m not in _CONTAINER_MEMBERS for m in re.findall(r"(?:\.|->)([A-Za-z_]\w*)", statement))
+    problems = []
+    for rel in sorted(os.path.relpath(os.path.join(d, n), kit) for d, _, names in os.walk(kit) for n in names):
+        if not rel.endswith(_CODE_FILE) or rel in stubs:
+            continue
+        run, found = [], None
+        for st in statements_of(kit, rel) + ["<end>"]:
+            if st in where and st not in shared and len(st) >= ANSWER_STATEMENT and touches_data(st):
+                found = found or [st]
+            if st in where and (not run or (run[-1], st) in follows):
+                run.append(st)
+                continue
+            if len(run) >= ANSWER_RUN and sum(len(x) for x in run) >= ANSWER_RUN_CHARS and \
+                    any(touches_data(x) for x in run) and sum(own(x) for x in run) >= 2:
+                found = found or run
+            run = [st] if st in where else []
+        if found:
+            problems.append(f"{rel} computes an exercise's answer: its code is {where[found[0]]}'s with other "
+                            f"names, from: {' '.join(found)[:100]}")
     return problems
 
 
