@@ -19,7 +19,8 @@ The rule, checked on the object's own symbol table before anything links or runs
     symbol, an ifunc) is refused, naming the symbol demangled and the rule;
   * any other weak or unique definition (inline functions, template instances,
     vtables and typeinfo, static locals of inline functions: every object
-    carries them) is made local to the object and renamed (objcopy), so the
+    carries them) is renamed and made local to the object (objcopy; a unique
+    symbol stays global under its new name, which no instructor object uses), so the
     student's own calls keep using the student's copy and nothing outside the
     object can bind to it; renaming also renames the COMDAT group it signs, so
     the linker never discards the instructor's copy for the student's either.
@@ -178,10 +179,13 @@ def problem_with(defined, allowed, ex):
             f"its exercise's functions:\n  " + "\n  ".join(shown[:8]) + more + f"\nThe rule: {RULE}.")
 
 
+RENAMED = "rt.submission."
+
+
 def localised_name(name, ex):
     """The private name a weak copy is renamed to: unique to this exercise file, never a C++ name."""
     tag = hashlib.sha256(f"{ex}\0{name}".encode()).hexdigest()[:16]
-    return f"rt.submission.{tag}.{len(name)}"
+    return f"{RENAMED}{tag}.{len(name)}"
 
 
 def confine(data, allowed, ex, objcopy="objcopy"):
@@ -223,8 +227,11 @@ def confine(data, allowed, ex, objcopy="objcopy"):
         still, _, signed = read_symbols(out)
     except Unreadable as e:
         return None, f"{ex}'s object file, rewritten: {e}"
-    left = sorted({n for n in still if n not in allowed} |
-                  {n for n in signed if n not in allowed and not n.startswith("rt.submission.")})
+    # A unique symbol (a static local of an inline function, `std::to_chars`'s digits) stays global
+    # under objcopy --localize-symbol; renamed, no instructor object can name it either.
+    renamed_unique = {n for n, bind in still.items() if n.startswith(RENAMED) and bind == STB_GNU_UNIQUE}
+    left = sorted({n for n in still if n not in allowed and n not in renamed_unique} |
+                  {n for n in signed if n not in allowed and not n.startswith(RENAMED)})
     if left:
         shown = [_shown(n, d) for n, d in zip(left, demangle(left))]
         return None, (f"{ex} defines symbols other than its exercise's functions that could not be made "
