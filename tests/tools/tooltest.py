@@ -111,10 +111,15 @@ def solution_folder(chapter):
 
 def fixture_source(name, substitutions=None):
     """Chapter 01's exercise file of the adversarial fixture NAME: its attack.cpp followed by the
-    correct answer all fixtures share (FIXTURES/answer.cpp), or its own unit_sphere.cpp when it
-    answers wrongly anyway; None when it has neither. substitutions: {placeholder: text}."""
+    correct answer all fixtures share (FIXTURES/answer.cpp), or preceded by the file its expect.json
+    names as "prelude" (a shared wrong answer, FIXTURES/own_picture.cpp), or its own unit_sphere.cpp
+    when it answers wrongly anyway; None when it has none. substitutions: {placeholder: text}."""
     folder = os.path.join(FIXTURES, name)
     parts = [os.path.join(folder, "attack.cpp"), os.path.join(FIXTURES, "answer.cpp")]
+    expect = os.path.join(folder, "expect.json")
+    prelude = json.load(open(expect)).get("prelude") if os.path.isfile(expect) else None
+    if prelude:     # a shared wrong answer written before the attack (own_picture.cpp)
+        parts = [os.path.join(FIXTURES, prelude), parts[0]]
     if not os.path.isfile(parts[0]):
         parts = [os.path.join(folder, "unit_sphere.cpp")]
         if not os.path.isfile(parts[0]):
