@@ -443,13 +443,18 @@ def answer_check(kit, repo=REPO):
             if f.endswith(_CODE_FILE) and (f.endswith((".hpp", ".h")) or f in stubs or not f.startswith("chapters")):
                 shared.update(statements_of(kit, f))
     where, follows = {}, set()   # each answer statement's file, and which statement follows which
+    files_of = {}                # the answer files each statement appears in
     for f in answers:
         statements = statements_of(repo, f)
         follows.update(zip(statements, statements[1:]))
         for st in statements:
             where.setdefault(st, f)
-    def own(statement):   # one of the answer's own statements: not shared, and not a loop or branch head
-        return statement not in shared and not re.match(r"(for|while|if|else|switch|do)\b", statement)
+            files_of.setdefault(st, set()).add(f)
+    def own(statement):
+        # One of an answer's own statements: not shared with the kit, not a loop or branch head, and
+        # not the course's vocabulary that several exercises write alike (filling in a hit record).
+        return statement not in shared and len(files_of.get(statement, ())) == 1 and \
+            not re.match(r"(for|while|if|else|switch|do)\b", statement)
 
     def touches_data(statement):
         return any(m not in _CONTAINER_MEMBERS for m in re.findall(r"(?:\.|->)([A-Za-z_]\w*)", statement))
