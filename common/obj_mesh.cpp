@@ -4,6 +4,7 @@
 #include <tiny_obj_loader.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -33,20 +34,56 @@ int line_of_statement(const std::string& text, const std::string& keyword, size_
     return 0;
 }
 
-// tinyobjloader drops a face of fewer than three corners without a word,
-// which would also shift the face-to-line numbering used above: so such
-// faces are found first, here.
-void check_face_sizes(const std::string& text, const std::string& source) {
+// Is `word` a decimal number, all of it, and finite? tinyobjloader reads
+// "nan", "inf" or any other word as 0 without a word; so only digits, signs,
+// a point and an exponent are let through, and strtod must take them all.
+bool finite_number(const std::string& word) {
+    if (word.find_first_not_of("0123456789+-.eE") != std::string::npos) return false;
+    char* end = nullptr;
+    const double x = std::strtod(word.c_str(), &end);
+    return end == word.c_str() + word.size() && std::isfinite(x);
+}
+
+// Is `part` (one number of a face corner, "7" or "-2" of "7/3/-2") an
+// integer that fits an int? tinyobjloader's own reading of a longer one
+// overflows, and the wrapped number can land on a vertex that exists.
+bool index_that_fits(const std::string& part) {
+    const size_t digits = part.size() - (part[0] == '-' || part[0] == '+' ? 1 : 0);
+    if (digits == 0 || digits > 9) return false;  // 9 digits: below 2^31
+    return part.find_first_not_of("0123456789", part.size() - digits) == std::string::npos;
+}
+
+// Each number of one face corner ("i", "i/j", "i//k", "i/j/k").
+void check_corner(const std::string& corner, const std::string& source, int line) {
+    std::istringstream parts(corner);
+    std::string part;
+    for (int slot = 0; std::getline(parts, part, '/'); ++slot)
+        if ((slot == 0 || !part.empty()) && !index_that_fits(part))
+            throw obj_error(source, line,
+                            "expected a vertex index (a whole number of at most 9 digits, from 1, or negative to count "
+                            "from the end), got `" + corner + "`");
+}
+
+// What tinyobjloader would let through or misread, found first, here, with
+// the line: a face of fewer than three corners (dropped without a word,
+// which would also shift the face-to-line numbering used above), a corner
+// index that is not a whole number that fits an int, and a vertex
+// coordinate that is not a finite number.
+void check_statements(const std::string& text, const std::string& source) {
     std::istringstream in(text);
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {
         std::istringstream words(line);
-        std::string keyword, corner;
-        if (!(words >> keyword) || keyword != "f") continue;
-        int corners = 0;
-        while (words >> corner && corner[0] != '#') ++corners;
-        if (corners < 3)
-            throw obj_error(source, number, "a face needs at least three corners, got " + std::to_string(corners));
+        std::string keyword, word;
+        if (!(words >> keyword) || (keyword != "f" && keyword != "v")) continue;
+        int count = 0;
+        for (; words >> word && word[0] != '#'; ++count) {
+            if (keyword == "f") check_corner(word, source, number);
+            if (keyword == "v" && !finite_number(word))
+                throw obj_error(source, number, "expected a finite number for a vertex coordinate, got `" + word + "`");
+        }
+        if (keyword == "f" && count < 3)
+            throw obj_error(source, number, "a face needs at least three corners, got " + std::to_string(count));
     }
 }
 
@@ -59,7 +96,7 @@ std::string first_line(const std::string& message) {
 }  // namespace
 
 obj_mesh parse_obj_mesh(const std::string& text, const std::string& source, double max_coordinate) {
-    check_face_sizes(text, source);
+    check_statements(text, source);
     tinyobj::ObjReaderConfig config;
     config.triangulate = false;  // one face per `f` line, so errors can name the line
     config.vertex_color = false;

@@ -78,17 +78,44 @@ int material_index(const scene<T>& s, int object) {
     return s.triangles[o.index].material;
 }
 
+// The two unit directions a checker pattern is laid out along: squares are
+// [i, i + 1) x [j, j + 1) in (point . u, point . v).
+struct checker_axes {
+    vec3d u{1, 0, 0}, v{0, 0, 1};  // the x-z plane: a ground at y = const
+};
+
+// A plane's own checker axes: the two world axes other than the one its
+// normal points along most, each made perpendicular to the normal (and v to
+// u). For a plane perpendicular to a world axis they are exactly the other
+// two world axes, in order: x and z for a ground at y = const (the chapters'
+// scenes), x and y for one at z = const (the SPD scenes, z up). Along the
+// normal they do not change, so a hit point a rounding error off the plane
+// never flickers between squares. A normal of any finite non-zero length.
+inline checker_axes checker_axes_of(const vec3d& normal) {
+    const vec3d a = glm::abs(normal);
+    const int up = a.x >= a.y && a.x >= a.z ? 0 : a.y >= a.z ? 1 : 2;
+    const vec3d n = normalize(normal / a[up]);  // divided first: no square under- or overflows
+    vec3d u(0), v(0);
+    u[up == 0 ? 1 : 0] = 1;
+    v[up == 2 ? 1 : 2] = 1;
+    u = normalize(u - dot(u, n) * n);
+    v = normalize(v - dot(v, n) * n - dot(v, u) * u);
+    return {u, v};
+}
+
 // m as seen at `point`: a checker material alternates m.diffuse and
-// m.checker_color in unit squares of the x-z plane (meant for horizontal
-// planes such as the ground). Only x and z pick the square: y as well would
-// make the colour flicker on a plane at y = 0, where computed hit points land
-// a rounding error above or below zero at random. m is returned unchanged
-// when it has no pattern or the point is not finite.
+// m.checker_color in unit squares along the two axes (default: the x-z
+// plane; a plane's hit uses checker_axes_of its normal, see below). The
+// third direction does not pick the square: it would make the colour flicker
+// on a plane at y = 0, where computed hit points land a rounding error above
+// or below zero at random. m is returned unchanged when it has no pattern or
+// the point is not finite.
 template <class T>
-material material_at(const material& m, const vec3<T>& point) {
+material material_at(const material& m, const vec3<T>& point, const checker_axes& axes = {}) {
     if (!m.checker || !is_finite(point)) return m;
+    const vec3d p(point);
     // fmod rather than a cast to an integer: a huge coordinate stays defined.
-    const double squares = std::floor(double(point.x)) + std::floor(double(point.z));
+    const double squares = std::floor(dot(p, axes.u)) + std::floor(dot(p, axes.v));
     material here = m;
     if (std::fmod(squares, 2.0) != 0.0) here.diffuse = m.checker_color;
     return here;
@@ -97,7 +124,10 @@ material material_at(const material& m, const vec3<T>& point) {
 // The material at a hit of the scene (hit.object names the object).
 template <class T>
 material material_at(const scene<T>& s, const hit_record<T>& hit) {
-    return material_at(s.materials[size_t(material_index(s, hit.object))], hit.point);
+    const material& m = s.materials[size_t(material_index(s, hit.object))];
+    const object_ref o = locate(s, hit.object);
+    if (!m.checker || o.kind != shape_kind::plane) return material_at(m, hit.point);
+    return material_at(m, hit.point, checker_axes_of(vec3d(s.planes[o.index].normal)));
 }
 
 }  // namespace rt

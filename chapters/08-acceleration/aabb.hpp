@@ -147,13 +147,19 @@ T widen_exit(T exit) {
 //     included) or the box is missed. 0 * infinity = NaN appears when the
 //     origin lies exactly on a face plane: a NaN must never make a box the
 //     ray crosses look missed.
+//   * A direction component that is subnormal (not zero, but so small that
+//     its reciprocal overflows to infinity) is NOT parallel: the ray crosses
+//     that slab at (lo.k - o.k) / d.k and (hi.k - o.k) / d.k, which may be
+//     ordinary numbers. For such a component, divide by d.k instead of
+//     multiplying by the infinite reciprocal.
 //   * entry is never NaN. A ray starting inside the box returns range.min.
 //   * Because the exit is widened, a box entered a few units in the last
 //     place beyond range.max can still be reported: that is the price of
 //     never missing one entered exactly at range.max.
 //   * range.min may be -infinity and range.max +infinity.
 //   Outside the promise: coordinates so large that (p - o) overflows, and
-//   slab parameters so small that they are subnormal.
+//   slab parameters so small that they are subnormal (a slab parameter, t,
+//   not a direction component: those are covered above).
 //
 // T is float or double: the same code is compiled for both.
 template <class T>

@@ -17,8 +17,15 @@ std::optional<T> intersect_box(const aabb<T>& box, const ray<T>& r, const vec3<T
         const bool down = std::signbit(inv_direction[k]);
         const T near_plane = down ? box.hi[k] : box.lo[k];
         const T far_plane = down ? box.lo[k] : box.hi[k];
-        const T t_near = (near_plane - r.origin[k]) * inv_direction[k];
-        const T t_far = (far_plane - r.origin[k]) * inv_direction[k];
+        // A subnormal direction component is not zero, but its reciprocal
+        // overflows to infinity, which would treat the ray as parallel to a
+        // slab it crosses: for that axis divide instead (two roundings, as
+        // the product's three are within widen_exit's bound).
+        const bool overflowed = std::isinf(inv_direction[k]) && r.direction[k] != T(0);
+        const T t_near = overflowed ? (near_plane - r.origin[k]) / r.direction[k]
+                                    : (near_plane - r.origin[k]) * inv_direction[k];
+        const T t_far = overflowed ? (far_plane - r.origin[k]) / r.direction[k]
+                                   : (far_plane - r.origin[k]) * inv_direction[k];
         // Written so that a NaN (0 * inf: the origin on a face plane of a slab
         // the ray is parallel to) fails the comparison and changes nothing;
         // such a ray lies in the closed slab for every t.

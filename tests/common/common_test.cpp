@@ -228,6 +228,42 @@ TEST_CASE("material_at: the checker pattern alternates in unit squares of x and 
     CHECK(material_at(m, vec3<double>(1.5, 0.0, 0.5)).diffuse == color(1, 1, 1));
 }
 
+// The SPD scenes' ground is the plane z = -0.5 (z up). With the squares
+// picked by floor(x) + floor(z) whatever the plane, z is constant on it and
+// the pattern came out as stripes: along y nothing changed. The checker must
+// follow the plane's own axes.
+TEST_CASE("material_at: the checker of a z-up plane follows the plane's axes, not stripes of x and z") {
+    scene<double> s;
+    material m;
+    m.diffuse = color(1, 1, 1);
+    m.checker = true;
+    m.checker_color = color(0, 0, 0);
+    s.materials = {m};
+    s.planes.push_back({vec3d(0, 0, -0.5), vec3d(0, 0, 3), 0});  // z up, a normal of length 3
+    hit_record<double> h;
+    h.object = 0;
+    auto at = [&](double x, double y, double z) {
+        h.point = vec3d(x, y, z);
+        return material_at(s, h).diffuse;
+    };
+    CHECK(at(0.5, 0.5, -0.5) == color(1, 1, 1));
+    CHECK(at(1.5, 0.5, -0.5) == color(0, 0, 0));  // one square along x
+    CHECK(at(0.5, 1.5, -0.5) == color(0, 0, 0));  // one square along y: the stripes had the same colour here
+    CHECK(at(1.5, 1.5, -0.5) == color(1, 1, 1));
+    CHECK(at(1.5, 1.5, -0.5 + 1e-9) == color(1, 1, 1));  // off the plane by rounding: the same square
+    CHECK(at(1.5, 1.5, -0.5 - 1e-9) == color(1, 1, 1));
+    // A tilted plane: squares of side 1 measured in the plane itself.
+    const checker_axes a = checker_axes_of(vec3d(0, 1, 1));
+    CHECK(std::fabs(dot(a.u, a.v)) < 1e-15);
+    CHECK(std::fabs(dot(a.u, vec3d(0, 1, 1))) < 1e-15);
+    CHECK(std::fabs(dot(a.v, vec3d(0, 1, 1))) < 1e-15);
+    CHECK(std::fabs(length(a.u) - 1) < 1e-15);
+    CHECK(std::fabs(length(a.v) - 1) < 1e-15);
+    // A y-up ground keeps the x-z squares of every chapter's picture, bit for bit.
+    const checker_axes g = checker_axes_of(vec3d(0, 2, 0));
+    CHECK((g.u == vec3d(1, 0, 0) && g.v == vec3d(0, 0, 1)));
+}
+
 TEST_CASE("material_at: a hit names its material by its object and a bad object index says what is wrong") {
     scene<double> s = one_of_each();
     for (int i = 0; i < 4; ++i) s.materials[size_t(i)].diffuse = color(float(i));

@@ -116,6 +116,14 @@ struct context {
         }
     }
 
+    // The material of stored object o at a hit point: a plane's checker
+    // follows the plane's own axes (common/scene.hpp, checker_axes_of).
+    material material_at_hit(size_t o, const vec3<T>& point) const {
+        const material& m = world.materials[size_t(material_of[o])];
+        if (!m.checker || o < soa.sphere_count || o >= soa.sphere_count + soa.plane_count) return material_at(m, point);
+        return material_at(m, point, checker_axes_of(world.planes[o - soa.sphere_count].normal));
+    }
+
     // The scene's own number of the object stored as number i.
     size_t original(size_t i) const { return soa.tree ? size_t(soa.original[i]) : i; }
 
@@ -215,7 +223,7 @@ image render_with(const scene_description& d, int width, int height, bool tree, 
                 const vec3<T> origin(p.ox[k], p.oy[k], p.oz[k]), direction(p.dx[k], p.dy[k], p.dz[k]);
                 const vec3<T> point = origin + t[k] * direction;
                 const vec3<T> n = ctx.normal(size_t(object[k]), point, direction);
-                const material m = material_at(d.world.materials[size_t(ctx.material_of[size_t(object[k])])], point);
+                const material m = ctx.material_at_hit(size_t(object[k]), point);
                 if constexpr (Lights)
                     out = ch06::shade(point, n, -direction, m, d.world.lights, d.world.ambient, occluded);
                 else

@@ -71,14 +71,29 @@ std::optional<plane_hit<T>> plane_direct(const ray<T>& ray_, const plane<T>& p, 
 // point's signed distance along the normal. What remains off the plane is
 // the rounding of the point's own coordinates, the least any stored point
 // can have.
+//
+// A hit is reported with a finite point or not at all. A ray nearly parallel
+// to the plane can meet it at a t near T's largest numbers (a float ray at
+// t near 2^127), where o + t d lies beyond T's range: no point of T holds it,
+// so the hit is not reported. Where o + t d is finite but its products with
+// the normal overflow (components near T's largest), the distance is taken
+// on the difference scaled by a power of two, which changes no digit.
 template <class T>
 std::optional<plane_hit<T>> plane_snapped(const ray<T>& ray_, const plane<T>& p, const interval<T>& range) {
     T t = detail::plane_t(ray_, p);
     if (!range.contains(t)) return std::nullopt;
     vec3<T> x = ray_.at(t);
+    if (!is_finite(x)) return std::nullopt;
     const vec3<T> n = detail::comfortable_normal(p);
-    T off = dot(x - p.point, n) / dot(n, n);
-    return plane_hit<T>{t, x - off * n};
+    const vec3<T> e = x - p.point;
+    T off = dot(e, n) / dot(n, n);
+    if (!std::isfinite(off) && is_finite(e)) {
+        const int k = direction_scale(e);  // 2^k e has its largest component near 1
+        off = std::ldexp(dot(detail::times_power_of_two(e, k), n) / dot(n, n), -k);
+    }
+    const vec3<T> snapped = x - off * n;
+    if (!is_finite(snapped)) return std::nullopt;
+    return plane_hit<T>{t, snapped};
 }
 
 }  // namespace rt::formulations
