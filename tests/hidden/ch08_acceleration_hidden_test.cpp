@@ -24,6 +24,7 @@
 
 #include "test_support.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -503,6 +504,35 @@ TEST_CASE_TEMPLATE("hidden: traversal: the range shrinks to the closest hit so f
     CHECK_MESSAGE(shrunk, "after a hit, objects must be asked only up to the closest t found so far (range.max "
                           "shrinks to it): a farther hit must never be able to replace a nearer one");
     CHECK_MESSAGE(right, "with the range shrunk to the closest hit, the answer is brute force's");
+}
+
+TEST_CASE_TEMPLATE("hidden: traversal: a waiting node is re-checked with the widened comparison", T, RT_SCALARS) {
+    // A flat mesh, one triangle per leaf, hit straight down through its
+    // shared edges and corners along directions that are not powers of two:
+    // the slab test's entry (h - o) * (1 / d) and the triangle's own t round
+    // differently, so a triangle's t can lie a rounding below the entry of
+    // the box that holds it. Two triangles sharing an edge are hit at equal
+    // t, and the lower index must win even when its leaf waits on the stack:
+    // it may only be skipped when its entry lies beyond widen_exit(best t).
+    bool same = true;
+    for (const T height : {T(0.3), T(-0.7), T(0.1)})
+        for (const bool reversed : {false, true}) {
+            objects<T> mesh;
+            add_planar_grid(mesh, 8, height);
+            if (reversed) std::reverse(mesh.triangles.begin(), mesh.triangles.end());
+            build_options one;
+            one.max_leaf_size = 1;
+            const bvh<T> tree = build_median(mesh.boxes(), one);
+            std::vector<ray<T>> rays;
+            for (int i = -8; i <= 8; ++i)
+                for (int j = -8; j <= 8; ++j)
+                    for (const T down : {T(3), T(0.7), T(1.3), T(5.5)})
+                        rays.push_back({{T(i) / T(8), T(2), T(j) / T(8)}, {0, -down, 0}});
+            const std::vector<interval<T>> ranges(rays.size(), {T(0), infinity<T>});
+            same = tree_equals_brute_force(mesh, tree, rays, ranges) && same;
+        }
+    CHECK_MESSAGE(same, "a node waiting on the stack was skipped although it held the answer: compare its entry "
+                        "with widen_exit(best t), the very comparison intersect_box makes, not with best t itself");
 }
 
 TEST_CASE_TEMPLATE("hidden: traversal: any_hit agrees with closest_hit on whether something is hit", T, RT_SCALARS) {
