@@ -13,6 +13,7 @@ import subprocess
 import tempfile
 import threading
 import time
+import traceback
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
@@ -307,22 +308,38 @@ class Grader:
         by_chapter = {cid: {} for cid in self.chapter_ids}
         probes = {}
         visible_end = self._per.start + self.options.visible_seconds
-        for cid in ready:
-            ch = chapters[cid]
-            folder = os.path.join(work, cid)
-            probes[cid] = self._probe(self._runner_path(folder, cid), logs, user) if self._cases(cid) else ""
+
+        def visible(cid, lane_logs, lane_user, cpu):
+            ch, folder = chapters[cid], os.path.join(work, cid)
+            runner = self._runner_path(folder, cid)
             began = time.monotonic()     # progress, one line a chapter and phase (no verdicts: they come at the end)
-            by_chapter[cid].update(self._run_phase(ch, "public", folder, logs, user, probes[cid], visible_end))
-            by_chapter[cid].update(self._picture(ch, folder, logs, out_dir, user))
+            probes[cid] = self._probe(runner, lane_logs, lane_user) if self._cases(cid) else ""
+            found = self._run_phase(ch, "public", folder, lane_logs, lane_user, probes[cid], visible_end, cpu)
+            found.update(self._picture(ch, folder, lane_logs, out_dir, lane_user))
             self.log(f"grader: {cid} public tests and picture done ({time.monotonic() - began:.1f} s)")
-        self._per.visible_seconds = time.monotonic() - self._per.start
-        for cid in ready:
-            folder = os.path.join(work, cid)
+            return found
+
+        def hidden(cid, lane_logs, lane_user, cpu):
             began = time.monotonic()
-            by_chapter[cid].update(self._run_phase(chapters[cid], "hidden", folder, logs, user, probes[cid],
-                                                   self._per.deadline))
-            if self._cases(cid, "hidden"):
-                self.log(f"grader: {cid} hidden tests done ({time.monotonic() - began:.1f} s)")
+            try:
+                found = self._run_phase(chapters[cid], "hidden", os.path.join(work, cid), lane_logs, lane_user,
+                                        probes[cid], self._per.deadline, cpu)
+                if found:
+                    self.log(f"grader: {cid} hidden tests done ({time.monotonic() - began:.1f} s)")
+                return found
+            except Exception:   # noqa: BLE001 - a grader fault here must not replace the visible results
+                # Whatever happens in the hidden phase stays in the hidden tests' entries: a grader that
+                # failed here and wrote only its own error would show the student one bit of phase 2.
+                self.log("grader: the hidden phase of " + cid + " failed:\n" + traceback.format_exc()[-3000:])
+                return {name: self._result(name, kind, cid, False,
+                                           "Grader problem during the hidden tests (tell your instructor).")
+                        for name, kind, _, _ in self._cases(cid, "hidden")}
+
+        for cid, found in self._in_lanes(ready, visible, logs, user, slot).items():
+            by_chapter[cid].update(found)
+        self._per.visible_seconds = time.monotonic() - self._per.start
+        for cid, found in self._in_lanes(ready, hidden, logs, user, slot).items():
+            by_chapter[cid].update(found)
 
         # 4. The results, chapter by chapter in the manifest's order. A chapter that did not build has
         # its compilation entry; so has an earlier chapter it builds on (in a kit), and every failed
@@ -356,6 +373,38 @@ class Grader:
         if suspicious:   # for the instructor's eyes only: never in results.json, which the student sees
             self.log("grader: instructor note: words to look at in the submission: " + "; ".join(suspicious))
         return results, notes
+
+    def _in_lanes(self, cids, step, logs, user, slot):
+        """{cid: step(cid, logs, user, cpu)} for every chapter, options.jobs chapters at a time. Each lane
+        has its own sandbox user (a run's clean-up kills every process of its user: it must not reach
+        the other lane's runner), its own log folder (a run's output is captured in its log file) and,
+        with more than one lane, its own CPU for its judges (a judge and its runner take turns on the
+        judge's CPU, so one lane keeps one CPU busy: two lanes use two)."""
+        lanes = max(1, min(self.options.jobs, len(cids)))
+        if lanes == 1:
+            return {cid: step(cid, logs, user, None) for cid in cids}
+        cpus = sorted(os.sched_getaffinity(0))
+        per = dict(self._per.__dict__)     # this grading's folder, deadline, times: thread-local
+        pending = queue.Queue()
+        for cid in cids:
+            pending.put(cid)
+        done = {}
+
+        def lane(k):
+            self._per.__dict__.update(per)
+            lane_logs = os.path.join(logs, f"lane{k}")
+            make_dir(lane_logs, None, 0o700)
+            lane_user = sandbox.sandbox_user(slot, k + 1) if user is not None else None
+            while True:
+                try:
+                    cid = pending.get_nowait()
+                except queue.Empty:
+                    return
+                done[cid] = step(cid, lane_logs, lane_user, cpus[k % len(cpus)])
+
+        with ThreadPoolExecutor(max_workers=lanes) as pool:
+            list(pool.map(lane, range(lanes)))
+        return {cid: done[cid] for cid in cids}
 
     def _dependencies(self, chapters, cid):
         """The chapters (ids) whose exercise code chapter cid's runner and program link from the
@@ -467,7 +516,7 @@ class Grader:
     def _runner_path(folder, cid):
         return os.path.join(os.path.dirname(folder), "bin", cid, "runner")
 
-    def _run_phase(self, ch, kind, folder, logs, user, probe, phase_end):
+    def _run_phase(self, ch, kind, folder, logs, user, probe, phase_end, cpu=None):
         """One judge's cases of a chapter (kind: public or hidden) against a runner of the student's code
         (one for the phase, replaced only when it broke); returns {name: TestResult}."""
         cases = self._cases(ch["id"], kind)
@@ -482,7 +531,7 @@ class Grader:
             try:
                 outcomes = judge.run_cases(ch[f"{kind}_judge"], [case for *_, case in cases], host,
                                            self.options.limits, self._per.work,
-                                           os.path.join(logs, f"{ch['id']}-{kind}-judge"), budget)
+                                           os.path.join(logs, f"{ch['id']}-{kind}-judge"), budget, cpu)
             finally:
                 host.close()
         found = {}

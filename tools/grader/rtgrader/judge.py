@@ -48,10 +48,17 @@ class CaseOutcome:
 JUDGE_MEMORY_BYTES = 2048 << 20
 
 
-def _judge_limits():     # in the judge's process, before exec
+def _judge_limits(cpu=None):     # in the judge's process, before exec
     import resource
     resource.setrlimit(resource.RLIMIT_AS, (JUDGE_MEMORY_BYTES, JUDGE_MEMORY_BYTES))
     resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+    if cpu is not None:
+        # The judge stays on this CPU and asks its runner to join it (judge.cpp, share_cpu): two
+        # chapters graded at once then use one CPU each.
+        try:
+            os.sched_setaffinity(0, {cpu})
+        except OSError:
+            pass
 
 
 def escape_filter(case):
@@ -158,7 +165,7 @@ class _Frames:
             self.buffer += data
 
 
-def run_cases(judge, cases, host, limits, cwd, log_path, budget):
+def run_cases(judge, cases, host, limits, cwd, log_path, budget, cpu=None):
     """Runs `cases` (names) of `judge` against host's runner; returns {name: CaseOutcome}.
     budget.reason() says why no further case may start ('' while they may), budget.skipped(case)
     why that case is not started (another case of its concept went past its time limit, which
@@ -167,7 +174,7 @@ def run_cases(judge, cases, host, limits, cwd, log_path, budget):
     results = {}
     remaining = [c for c in cases if not budget.skipped(c)]
     while remaining and not budget.reason():
-        ran = _one_judge(judge, remaining, host, limits, cwd, log_path, budget, results)
+        ran = _one_judge(judge, remaining, host, limits, cwd, log_path, budget, results, cpu)
         left = [c for c in remaining if c not in results and not budget.skipped(c)]
         if not ran or (len(left) == len(remaining) and not budget.reason()):
             for c in left:   # the judge ended without starting them: nothing more to learn by starting it again
@@ -178,7 +185,7 @@ def run_cases(judge, cases, host, limits, cwd, log_path, budget):
     return results
 
 
-def _one_judge(judge, cases, host, limits, cwd, log_path, budget, results):
+def _one_judge(judge, cases, host, limits, cwd, log_path, budget, results, cpu=None):
     """One judge process for `cases`, until it ends or is killed; fills results. Returns
     whether it started any case."""
     grader_end, judge_control = socket.socketpair()
@@ -190,7 +197,7 @@ def _one_judge(judge, cases, host, limits, cwd, log_path, budget, results):
             [judge, "--test-case=" + ",".join(escape_filter(c) for c in cases), "--no-version", "--no-colors"],
             cwd=cwd, stdin=subprocess.DEVNULL, stdout=log, stderr=log,
             env={"PATH": "/usr/bin:/bin", "LANG": "C.UTF-8", "RT_JUDGE_CONTROL_FD": str(judge_control.fileno())},
-            pass_fds=(judge_control.fileno(),), preexec_fn=_judge_limits)
+            pass_fds=(judge_control.fileno(),), preexec_fn=lambda: _judge_limits(cpu))
     judge_control.close()
     frames = _Frames(grader_end)
     has_runner = None         # the Runner this judge process holds
