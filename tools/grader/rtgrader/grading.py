@@ -785,7 +785,8 @@ class _Budget:
         """'' while the chapter may start more cases, else why its remaining cases are not run."""
         now = time.monotonic()
         if now > self.phase_end:
-            return f"not run: the submission's tests used their time budget ({self.options.submission_seconds:g} s)"
+            return (f"not run: the submission's tests used their time budget (the visible tests "
+                    f"{self.options.visible_seconds:g} s, all tests {self.options.submission_seconds:g} s)")
         if now > self.chapter_end:
             return f"not run: this chapter's tests used their time budget ({self.options.chapter_seconds:g} s)"
         return ""
