@@ -13,6 +13,9 @@ from . import dashboard, fsutil, grading, manifest, report, results, tree
 from .sandbox import Limits
 
 
+KIT_TIMEOUT = 30.0     # seconds per test case in a kit's preview (README, "Student kit and preview")
+
+
 def _common_arguments(p):
     p.add_argument("--build-dir", help="grading folder holding the prebuilt instructor tree "
                                        "(default: build/grader in the repository)")
@@ -21,7 +24,8 @@ def _common_arguments(p):
     p.add_argument("--public-only", action="store_true",
                    help="public tests and renders only (a student's preview; the only choice in a kit)")
     p.add_argument("--manifest", help="points and visibility (default: tests/manifest.json)")
-    p.add_argument("--timeout", type=float, default=10.0, help="wall-clock seconds per test case (default 10)")
+    p.add_argument("--timeout", type=float, default=None,
+                   help="wall-clock seconds per test case (default 10; 30 in a student kit's preview)")
     p.add_argument("--render-timeout", type=float, default=60.0, help="seconds for a chapter's render (default 60)")
     p.add_argument("--memory-mb", type=int, default=1024, help="address-space limit per test in MiB (default 1024)")
     p.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="parallel compiles / submissions")
@@ -36,6 +40,11 @@ def _setup(args, log):
         wanted = [c.strip().zfill(2) for c in args.chapters.split(",") if c.strip()]
     t.prepare(args.jobs, wanted, log=log)
     public_only = args.public_only or not t.state["has_solutions"]
+    # In a kit the judge has no solutions: what a test's own helpers ask of earlier chapters (chapter 08's
+    # brute force, its served objects) goes to the student's runner too, a round trip each, and the
+    # preview runs on the student's own machine, whatever else it is doing. Its cases get more time.
+    if args.timeout is None:
+        args.timeout = 10.0 if t.state["has_solutions"] else KIT_TIMEOUT
     limits = Limits(wall_seconds=args.timeout, cpu_seconds=int(args.timeout) + 1,
                     memory_bytes=args.memory_mb * 1024 * 1024)
     ids = [f"ch{n}" for n in wanted] if wanted else None
