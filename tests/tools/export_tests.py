@@ -249,7 +249,7 @@ class KitBuilt(KitTest):
         self.assertIsNone(NOT_FOUND.search(output), f"{where} names something the kit lacks:\n{output[-1500:]}")
         words = command.split()
         polite = "not implemented yet" in output
-        if words[0] == "ctest":
+        if words[0] in ("ctest", "tools/check"):  # tools/check NN builds chapter NN, then runs its ctest
             # The stubs fail every public test, politely.
             self.assertTrue(result.returncode == 8 and polite and re.search(r"(^|\s)0% tests passed", output),
                             f"{where}: expected every test to fail with 'not implemented yet' "
@@ -283,6 +283,25 @@ class KitBuilt(KitTest):
         self.assertTrue(public, f"{where}: the kit has no public test")
         for t in public + [t for t in data["tests"] if kind(t) == "render"]:
             self.assertIn("not implemented yet", t["output"], f"{where}: {t['name']} does not fail politely")
+
+    def test_check_stops_at_a_build_error(self):
+        """tools/check NN does not run the last build's tests when chapter NN no longer compiles."""
+        self.test_the_kit_builds_with_the_student_preset()
+        exercise = os.path.join(self.kit, "chapters", "01-unit-sphere", "unit_sphere.cpp")
+        with open(exercise) as f:
+            original = f.read()
+        try:
+            with open(exercise, "a") as f:
+                f.write("\nthis line does not compile;\n")
+            result = run(["tools/check", "01"], cwd=self.kit, env=dict(os.environ, **compiler_cache(self.kit)),
+                         timeout=600)
+        finally:
+            with open(exercise, "w") as f:
+                f.write(original)
+        output = result.stdout + result.stderr
+        self.assertEqual(result.returncode, 1, f"tools/check 01 with a compile error:\n{output[-1500:]}")
+        self.assertIn("chapter 01 does not build, so its tests were not run", output)
+        self.assertNotIn("tests passed", output, "tools/check ran the tests of the last build that worked")
 
     def test_the_kit_builds_with_the_student_preset(self):
         self.assertEqual(self.build.returncode, 0, "the kit does not build with the student preset")

@@ -32,12 +32,13 @@ KIT_ALLOW = [
     "CMakeLists.txt", "CMakePresets.json",
     "cmake", "common", "chapters", "scenes",
     "tests/CMakeLists.txt", "tests/support", "tests/public", "tests/common", "tests/scenes",
-    "tools/CMakeLists.txt", "tools/imgcmp.cpp", "tools/setup", "tools/debian-packages.txt",
+    "tools/CMakeLists.txt", "tools/imgcmp.cpp", "tools/setup", "tools/check", "tools/debian-packages.txt",
     "tools/grader",
 ]
 # Never in a kit, even inside an allowed folder.
 KIT_DENY = ["*/__pycache__/*", "*.pyc", "*/.DS_Store",
             "/tests/scenes/scene_plan_test.cpp",    # tests tools/render, which is not in the kit
+            "/tests/scenes/bvh_test.cpp",           # part of scene_plan_test's executable (tools/render's tree)
             "/tools/grader/README.md",              # the instructor's manual: the kit's README says how to preview
             "/tools/grader/screenshots/*",          # its pictures
             "/tools/grader/results/*",              # where and when the instructor's figures were measured
@@ -71,7 +72,7 @@ KIT_SHIP = {
                      "tests/support/**.hpp", "tests/support/**.cpp", "tests/common/*.cpp",
                      "tests/scenes/*_test.cpp", "tests/scenes/*.cmake", "tests/scenes/broken/*.json"],
     "scenes": ["scenes/*.json", "scenes/*.obj"],
-    "student tools": ["tools/imgcmp.cpp", "tools/setup", "tools/debian-packages.txt"],
+    "student tools": ["tools/imgcmp.cpp", "tools/setup", "tools/check", "tools/debian-packages.txt"],
     "the grader (for previews)": ["tools/grader/**"],
 }
 # The kit's own files, written by the exporter from these templates.
