@@ -102,7 +102,11 @@ class Adversarial(ToolTest):
                               solutions=expect.get("add_solutions", []),
                               files={"unit_sphere.cpp": source} if source is not None else {})
         out = os.path.join(config.work, "fixtures-results", name, "results.json")
-        graded = grade(sub, out, expect["chapters"], config.build_dir, HANG_LIMITS if name in HANGING else TEST_LIMITS)
+        # "gradings": N grades the same submission N times in a row (a channel from one grading into the
+        # next); the checks read the last.
+        for _ in range(expect.get("gradings", 1)):
+            graded = grade(sub, out, expect["chapters"], config.build_dir,
+                           HANG_LIMITS if name in HANGING else TEST_LIMITS)
         data = self.assertGraded(graded)
         if expect.get("root_only") and not ROOT:
             self.skipTest(f"'{name}' needs user isolation, which is off when the grader is not run as root: "
@@ -131,6 +135,10 @@ class Adversarial(ToolTest):
             if not public_forbidden:
                 self.assertTrue(any(hidden_forbidden in t["output"] for t in data["tests"] if t["tags"][1] == "public"),
                                 "the public feedback should still show the exception's own message")
+        shown = expect.get("shown_in_public")     # the attack ran and its channel works (the test is not vacuous)
+        if shown:
+            self.assertTrue(any(shown in t["output"] for t in data["tests"] if t["tags"][1] == "public"),
+                            f"no public test shows '{shown}'")
         if public_forbidden:
             for t in data["tests"]:
                 if t["tags"][1] == "public":

@@ -527,7 +527,10 @@ class Grader:
         outcomes = {}
         if not probe:
             runner = self._runner_path(folder, ch["id"])
-            host = judge.RunnerHost(self._runner_starter(runner, logs, user, budget))
+            # A hidden phase's runner sees hidden inputs: it gets system files of its own (README, "Visible
+            # before hidden"), so the pages it loads or evicts are no later run's, not even the next grading's.
+            system = self._hidden_system(runner) if kind == "hidden" else None
+            host = judge.RunnerHost(self._runner_starter(runner, logs, user, budget, system))
             try:
                 outcomes = judge.run_cases(ch[f"{kind}_judge"], [case for *_, case in cases], host,
                                            self.options.limits, self._per.work,
@@ -560,14 +563,26 @@ class Grader:
         self._per.times["renders"] += time.monotonic() - started
         return {name: self._result(name, "render", ch["id"], passed, output)}
 
-    def _run_runner(self, argv, log_path, user, work, env_extra=None, pass_fds=(), limits=None, stopper=None):
+    def _run_runner(self, argv, log_path, user, work, env_extra=None, pass_fds=(), limits=None, stopper=None,
+                    system=None):
         """Runs the student's runner in the sandbox (it reads only itself, writes only a private /tmp).
         work is passed in: the runner runs in a thread of its own, where self._per is not this grading's."""
         return sandbox.run(argv, limits=limits or self.options.limits, log_path=log_path, user=user,
                            inputs=[argv[0]], env_extra=env_extra, pass_fds=pass_fds, private_root=work,
-                           stopper=stopper)
+                           stopper=stopper, system=system)
 
-    def _runner_starter(self, runner, logs, user, budget):
+    def _hidden_system(self, runner):
+        """The private system folder of this grading's hidden runners (namespaces mode only: elsewhere
+        every run sees the machine's own files), made at the first hidden phase, removed with work."""
+        if self.iso.mode != isolation.NAMESPACES:
+            return None
+        folder = os.path.join(self._per.work, "hidden-system")
+        if not os.path.isdir(folder):
+            make_dir(folder, None, 0o755)
+            isolation.private_system(folder, [runner] + ([self.iso.setpriv] if self.iso.setpriv else []))
+        return folder
+
+    def _runner_starter(self, runner, logs, user, budget, system=None):
         """How the chapter's RunnerHost starts a runner. A runner serves many cases: each case's time
         limit is the grader's (judge.py); the runner's own wall-clock and CPU limits are the
         chapter's remaining budget."""
@@ -577,7 +592,8 @@ class Grader:
         def start(env, fds, stopper):
             seconds = max(1.0, budget.seconds_left())
             limits = dataclasses.replace(base, wall_seconds=seconds, cpu_seconds=int(seconds) + 1)
-            return self._run_runner([runner], os.path.join(logs, "runner"), user, work, env, fds, limits, stopper)
+            return self._run_runner([runner], os.path.join(logs, "runner"), user, work, env, fds, limits, stopper,
+                                    system)
         return start
 
     def _probe(self, runner, logs, user):

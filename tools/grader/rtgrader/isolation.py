@@ -26,6 +26,7 @@ in the grader's own tests; RT_GRADER_CGROUP=off turns cgroups off.
 """
 
 import os
+import re
 import shutil
 import subprocess
 import threading
@@ -54,10 +55,12 @@ class Isolation:
         return f"isolation: {what}; {cg}"
 
 
-def system_binds():
+def system_binds(root=None):
     """bwrap arguments for the read-only system: /usr and the usual links to it,
-    and only the few files of /etc the compiler and the dynamic loader read."""
-    args = ["--ro-bind", "/usr", "/usr"]
+    and only the few files of /etc the compiler and the dynamic loader read.
+    root: a private copy of the few system files a program needs (private_system), bound in
+    their place."""
+    args = ["--ro-bind", os.path.join(root, "usr") if root else "/usr", "/usr"]
     for top in ("bin", "sbin", "lib", "lib32", "lib64", "libx32"):
         path = "/" + top
         if os.path.islink(path):
@@ -66,9 +69,57 @@ def system_binds():
             args += ["--ro-bind", path, path]
     args += ["--perms", "0755", "--dir", "/etc"]
     for name in ("ld.so.cache", "ld.so.conf", "ld.so.conf.d", "alternatives"):
-        if os.path.exists("/etc/" + name):
-            args += ["--ro-bind", "/etc/" + name, "/etc/" + name]
+        if os.path.exists((root or "") + "/etc/" + name):
+            args += ["--ro-bind", (root or "") + "/etc/" + name, "/etc/" + name]
     return args
+
+
+def _needed(path):
+    """The sonames an ELF file asks the dynamic loader for (readelf reads it; nothing runs it)."""
+    out = subprocess.run(["readelf", "-dW", path], capture_output=True, text=True, timeout=30).stdout
+    return re.findall(r"\(NEEDED\)\s+Shared library: \[([^\]/]+)\]", out)
+
+
+def _library_paths():
+    """soname -> path of the x86-64 libraries the loader's cache knows (ldconfig -p)."""
+    out = subprocess.run(["ldconfig", "-p"], capture_output=True, text=True, timeout=30).stdout
+    found = {}
+    for name, kind, path in re.findall(r"^\s*(\S+) \(([^)]*)\) => (\S+)$", out, re.M):
+        if "x86-64" in kind:
+            found.setdefault(name, path)
+    return found
+
+
+def private_system(folder, programs, interpreter="/lib64/ld-linux-x86-64.so.2"):
+    """Copies into folder (its usr/ and etc/) the system files programs need to start: the dynamic
+    loader, the libraries they ask for (and those ask for), /etc/ld.so.cache. A sandbox given this
+    folder (system_binds(root=folder)) in place of /usr shares no system file with any other run:
+    which of its pages are cached (the page cache is the machine's) then says nothing to a later
+    run, which sees only its own files ("Visible before hidden", the hidden phase). Returns folder."""
+    libraries = _library_paths()
+    wanted, pending, seen = {interpreter}, list(programs), set()
+    while pending:
+        path = pending.pop()
+        if path in seen:
+            continue
+        seen.add(path)
+        for soname in _needed(path):
+            if soname in libraries:
+                wanted.add(libraries[soname])
+                pending.append(libraries[soname])
+    for path in sorted(wanted | {p for p in programs if p.startswith(("/usr/", "/bin/", "/sbin/"))}) + \
+            ["/etc/ld.so.cache"]:
+        if not os.path.exists(path):
+            continue
+        # Where the sandbox will look for it: /lib, /lib64 and /bin are links into /usr.
+        at = os.path.join(os.path.realpath(os.path.dirname(path)), os.path.basename(path))
+        copy = os.path.join(folder, at.lstrip("/"))
+        os.makedirs(os.path.dirname(copy), mode=0o755, exist_ok=True)
+        if not os.path.exists(copy):
+            shutil.copy2(os.path.realpath(path), copy)
+    for top, dirs, _ in os.walk(folder):
+        os.chmod(top, 0o755)
+    return folder
 
 
 def namespace_args(tmp_bytes, shm_bytes):

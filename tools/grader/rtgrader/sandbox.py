@@ -432,8 +432,8 @@ def _replace_prefixes(arg, moved):
     return arg
 
 
-def _bwrap_command(iso, argv, limits, inputs, scratch, cwd, user, seccomp_fd=None):
-    args = [iso.bwrap] + isolation.namespace_args(limits.tmp_bytes, limits.shm_bytes) + isolation.system_binds()
+def _bwrap_command(iso, argv, limits, inputs, scratch, cwd, user, seccomp_fd=None, system=None):
+    args = [iso.bwrap] + isolation.namespace_args(limits.tmp_bytes, limits.shm_bytes) + isolation.system_binds(system)
     if seccomp_fd is not None:
         args += ["--seccomp", str(seccomp_fd)]
     binds = [("--ro-bind", p) for p in sorted({os.path.abspath(p) for p in inputs})]
@@ -458,7 +458,7 @@ def _bwrap_command(iso, argv, limits, inputs, scratch, cwd, user, seccomp_fd=Non
 
 
 def run(argv, *, limits, log_path, user=None, inputs=(), scratch=None, env_extra=None, pass_fds=(),
-        output_cap=64 * 1024, private_root=None, iso=None, stopper=None):
+        output_cap=64 * 1024, private_root=None, iso=None, stopper=None, system=None):
     """Runs argv in the sandbox under the limits; returns an Outcome.
 
     user:     (uid, gid) of the sandbox user (root), or None (the grader's own user)
@@ -470,6 +470,8 @@ def run(argv, *, limits, log_path, user=None, inputs=(), scratch=None, env_extra
               the fallback's copies and private folders (default: the system's temp folder)
     pass_fds: descriptors it inherits (pipes to the grader)
     stopper:  a Stopper another thread may use to end the run early (then timed out)
+    system:   namespaces mode: a private copy of the system files it needs (isolation.private_system),
+              bound in place of /usr and /etc's files
     """
     iso = iso or isolation.detect()
     counts["runs"] += 1
@@ -492,7 +494,7 @@ def run(argv, *, limits, log_path, user=None, inputs=(), scratch=None, env_extra
             os.write(w, program_bytes)
             os.close(w)
             pass_fds = tuple(pass_fds) + (seccomp_fd,)
-        cmd = _bwrap_command(iso, argv, limits, inputs, scratch, cwd, user, seccomp_fd)
+        cmd = _bwrap_command(iso, argv, limits, inputs, scratch, cwd, user, seccomp_fd, system)
     else:
         if user is not None:
             moved = _mirror(inputs, private_root)
