@@ -80,14 +80,17 @@ def _needed(path):
     return re.findall(r"\(NEEDED\)\s+Shared library: \[([^\]/]+)\]", out)
 
 
-def _library_paths():
-    """soname -> path of the x86-64 libraries the loader's cache knows (ldconfig -p)."""
-    out = subprocess.run(["ldconfig", "-p"], capture_output=True, text=True, timeout=30).stdout
-    found = {}
-    for name, kind, path in re.findall(r"^\s*(\S+) \(([^)]*)\) => (\S+)$", out, re.M):
-        if "x86-64" in kind:
-            found.setdefault(name, path)
-    return found
+# Where the loader looks for a soname by default (Debian's multiarch folders first).
+LIBRARY_FOLDERS = ("/lib/x86_64-linux-gnu", "/usr/lib/x86_64-linux-gnu", "/lib64", "/usr/lib64", "/lib", "/usr/lib")
+
+
+def _library_path(soname):
+    """The file the dynamic loader would take for soname from the system's folders, or None."""
+    for folder in LIBRARY_FOLDERS:
+        path = os.path.join(folder, soname)
+        if os.path.exists(path):
+            return path
+    return None
 
 
 def private_system(folder, programs, interpreter="/lib64/ld-linux-x86-64.so.2"):
@@ -96,7 +99,6 @@ def private_system(folder, programs, interpreter="/lib64/ld-linux-x86-64.so.2"):
     folder (system_binds(root=folder)) in place of /usr shares no system file with any other run:
     which of its pages are cached (the page cache is the machine's) then says nothing to a later
     run, which sees only its own files ("Visible before hidden", the hidden phase). Returns folder."""
-    libraries = _library_paths()
     wanted, pending, seen = {interpreter}, list(programs), set()
     while pending:
         path = pending.pop()
@@ -104,9 +106,10 @@ def private_system(folder, programs, interpreter="/lib64/ld-linux-x86-64.so.2"):
             continue
         seen.add(path)
         for soname in _needed(path):
-            if soname in libraries:
-                wanted.add(libraries[soname])
-                pending.append(libraries[soname])
+            found = _library_path(soname)
+            if found:
+                wanted.add(found)
+                pending.append(found)
     for path in sorted(wanted | {p for p in programs if p.startswith(("/usr/", "/bin/", "/sbin/"))}) + \
             ["/etc/ld.so.cache"]:
         if not os.path.exists(path):
