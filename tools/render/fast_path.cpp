@@ -101,31 +101,20 @@ struct context {
     soa_scene<T> soa;
     scene_camera<T> camera;
     const scene<double>& world;
-    std::vector<int> material_of;  // by object number
     T tmin;
 
     context(const scene_description& d, int width, int height, bool tree)
         : soa(d.world, tree, magnitude(d)), camera(d.camera, width, height), world(d.world),
-          tmin(camera.primary_range().min) {
-        const size_t spheres = d.world.spheres.size(), planes = d.world.planes.size();
-        for (size_t i = 0; i < size_t(d.world.object_count()); ++i) {
-            const size_t o = original(i);
-            material_of.push_back(o < spheres            ? d.world.spheres[o].material
-                                  : o < spheres + planes ? d.world.planes[o - spheres].material
-                                                         : d.world.triangles[o - spheres - planes].material);
-        }
-    }
+          tmin(camera.primary_range().min) {}
 
-    // The material of stored object o at a hit point: a plane's checker
-    // follows the plane's own axes (common/scene.hpp, checker_axes_of).
+    // The material of object o (the scene's number, as closest_hits answers)
+    // at a hit point: a plane's checker follows the plane's own axes
+    // (common/scene.hpp, checker_axes_of).
     material material_at_hit(size_t o, const vec3<T>& point) const {
-        const material& m = world.materials[size_t(material_of[o])];
+        const material& m = world.materials[size_t(material_index(world, int(o)))];
         if (!m.checker || o < soa.sphere_count || o >= soa.sphere_count + soa.plane_count) return material_at(m, point);
         return material_at(m, point, checker_axes_of(world.planes[o - soa.sphere_count].normal));
     }
-
-    // The scene's own number of the object stored as number i.
-    size_t original(size_t i) const { return soa.tree ? size_t(soa.original[i]) : i; }
 
     // The largest coordinate in the scene, the eye and the lights.
     static double magnitude(const scene_description& d) {
@@ -172,16 +161,21 @@ struct context {
             closest_hits<T, SM, Planes, Tris, false>(soa, p, tmin, t, object);
     }
 
-    // Unit normal at a hit point of object o, facing the ray for planes and triangles.
+    // Unit normal at a hit point of object o (the scene's number), facing the
+    // ray for planes and triangles: from the scene's shapes rounded to T, as
+    // soa_scene stores them.
     vec3<T> normal(size_t o, const vec3<T>& point, const vec3<T>& direction) const {
-        if (o < soa.sphere_count) return (point - vec3<T>(soa.cx[o], soa.cy[o], soa.cz[o])) / soa.radius[o];
+        if (o < soa.sphere_count) {
+            const sphere<double>& x = world.spheres[o];
+            return (point - convert<T>(x.center)) / T(x.radius);
+        }
         vec3<T> n;
         if (o < soa.sphere_count + soa.plane_count) {
-            o -= soa.sphere_count;
-            n = vec3<T>(soa.nx[o], soa.ny[o], soa.nz[o]);
+            n = convert<T>(soa_scene<T>::unit_normal(world.planes[o - soa.sphere_count]));
         } else {
-            o -= soa.sphere_count + soa.plane_count;
-            n = normalize(cross(vec3<T>(soa.e1x[o], soa.e1y[o], soa.e1z[o]), vec3<T>(soa.e2x[o], soa.e2y[o], soa.e2z[o])));
+            const triangle<double>& x = world.triangles[o - soa.sphere_count - soa.plane_count];
+            const vec3<T> a = convert<T>(x.a);
+            n = normalize(cross(convert<T>(x.b) - a, convert<T>(x.c) - a));
         }
         return dot(n, direction) > T(0) ? -n : n;
     }
@@ -254,7 +248,7 @@ primary_hits trace_with(const scene_description& d, int width, int height, bool 
                 const int col = col0 + k % tile_w, row = row0 + k / tile_w;
                 if (col >= width || row >= height) continue;
                 size_t i = size_t(row) * size_t(width) + size_t(col);
-                hits.object[i] = object[k] < 0 ? -1 : int(ctx.original(size_t(object[k])));
+                hits.object[i] = object[k] < 0 ? -1 : int(object[k]);
                 hits.t[i] = (long double)t[k];
             }
         }

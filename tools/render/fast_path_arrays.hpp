@@ -59,11 +59,17 @@ struct packet_best {
         }
     }
 
-    // Ray k hits object id at t: kept if nearer than what it has.
+    // Ray k hits object id at t: kept if nearer than what it has, or, with
+    // Ties, as near and of a lower number. Brute force meets the objects in
+    // the order of their numbers, so the nearer rule alone keeps the lowest
+    // number at a tie; a tree meets them in its own order and asks for Ties
+    // (the numbers it passes are then the scene's own, soa_scene::original),
+    // so the tree and brute force return the same object (chapter 08's rule).
+    template <bool Ties = false>
     [[gnu::always_inline]] void keep(int k, T t_new, I id) {
         const T old_t = t[k];
         const I old = object[k];
-        const bool closer = t_new < old_t;
+        const bool closer = Ties ? (t_new < old_t) | ((t_new == old_t) & (id < old)) : t_new < old_t;
         t[k] = closer ? t_new : old_t;
         // The object number is selected with a mask, not with ?: : gcc 12
         // turns "closer ? id : object[k]" into a conditional store, which it
@@ -105,7 +111,8 @@ struct soa_scene {
 
     // With a tree, spheres and triangles are stored in the trees' leaf
     // order, so a leaf is a contiguous range of the arrays; original[i] is
-    // then the scene's own number of object i.
+    // then the scene's own number of object i, and closest_hits answers with
+    // those numbers.
     bool tree = false;
     //
     // Spheres and triangles get different trees, each the faster of the two
@@ -161,12 +168,16 @@ struct soa_scene {
         radius.push_back(T(x.radius)), radius2.push_back(T(x.radius) * T(x.radius));
     }
 
-    void add_plane(const plane<double>& x) {
-        // Scaled by a power of two first (exact), so that normalize's
-        // squares neither underflow nor overflow: a normal of any finite
-        // non-zero length gives the unit normal to within rounding.
+    // Scaled by a power of two first (exact), so that normalize's squares
+    // neither underflow nor overflow: a normal of any finite non-zero length
+    // gives the unit normal to within rounding.
+    static vec3d unit_normal(const plane<double>& x) {
         const int k = formulations::direction_scale(x.normal);
-        const vec3d n = normalize(vec3d(std::ldexp(x.normal.x, k), std::ldexp(x.normal.y, k), std::ldexp(x.normal.z, k)));
+        return normalize(vec3d(std::ldexp(x.normal.x, k), std::ldexp(x.normal.y, k), std::ldexp(x.normal.z, k)));
+    }
+
+    void add_plane(const plane<double>& x) {
+        const vec3d n = unit_normal(x);
         px.push_back(T(x.point.x)), py.push_back(T(x.point.y)), pz.push_back(T(x.point.z));
         nx.push_back(T(n.x)), ny.push_back(T(n.y)), nz.push_back(T(n.z));
     }

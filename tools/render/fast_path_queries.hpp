@@ -7,17 +7,18 @@
 #endif
 
 // The closest hit of each ray of a packet: tbest[k] and object[k] (-1 for
-// a miss). Objects are numbered spheres, then planes, then triangles.
+// a miss), the scene's own number of the object (spheres, then planes, then
+// triangles; with a tree too). At a tie, the lowest number.
 template <class T, sphere_mode SM, bool Planes, bool Tris, bool CommonOrigin>
 void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, index_t<T>* object) {
     packet_best<T> best(p);
     if constexpr (SM != sphere_mode::none) {
         if (s.tree)
             traverse_packet(s.sphere_tree, p, best.t, [&](size_t begin, size_t end) {
-                spheres_closest<T, SM, CommonOrigin>(s, begin, end, p, tmin, best);
+                spheres_closest<T, SM, CommonOrigin, true>(s, begin, end, p, tmin, best);
             });
         else
-            spheres_closest<T, SM, CommonOrigin>(s, 0, s.sphere_count, p, tmin, best);
+            spheres_closest<T, SM, CommonOrigin, false>(s, 0, s.sphere_count, p, tmin, best);
     }
     if constexpr (Planes) planes_closest<T, CommonOrigin>(s, p, tmin, best);
     if constexpr (Tris) triangles_closest<T, CommonOrigin>(s, p, tmin, best);

@@ -73,9 +73,9 @@ inline T sphere_t(T fx, T fy, T fz, T c, T rr, T dx, T dy, T dz, T a, T inv_a, T
 // leave the lane loop. Cull first: the full test (square root, division,
 // the update of the closest hit) only when some ray of the packet passes
 // within the sphere's radius.
-template <class T, sphere_mode SM>
-[[gnu::always_inline]] inline void sphere_closest_common_origin(const soa_scene<T>& s, size_t i, const packet<T>& p, T tmin,
-                                         packet_best<T>& best) {
+template <class T, sphere_mode SM, bool Ties>
+[[gnu::always_inline]] inline void sphere_closest_common_origin(const soa_scene<T>& s, size_t i, index_t<T> id,
+                                                                const packet<T>& p, T tmin, packet_best<T>& best) {
     const T fx = p.ox[0] - s.cx[i], fy = p.oy[0] - s.cy[i], fz = p.oz[0] - s.cz[i], rr = s.radius2[i];
     const T c = sphere_c<T, SM>(fx, fy, fz, s.radius[i], rr);
     int near_any = 0;
@@ -84,14 +84,14 @@ template <class T, sphere_mode SM>
                                                    best.inv_a[k]) >= T(0));
     if (!near_any) return;
     for (int k = 0; k < W; ++k)
-        best.keep(k, sphere_t<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], best.a[k], best.inv_a[k], tmin),
-                  index_t<T>(i));
+        best.template keep<Ties>(
+            k, sphere_t<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], best.a[k], best.inv_a[k], tmin), id);
 }
 
 // The same for rays with origins of their own (an orthographic camera).
-template <class T, sphere_mode SM>
-[[gnu::always_inline]] inline void sphere_closest_own_origins(const soa_scene<T>& s, size_t i, const packet<T>& p, T tmin,
-                                       packet_best<T>& best) {
+template <class T, sphere_mode SM, bool Ties>
+[[gnu::always_inline]] inline void sphere_closest_own_origins(const soa_scene<T>& s, size_t i, index_t<T> id,
+                                                              const packet<T>& p, T tmin, packet_best<T>& best) {
     const T cx = s.cx[i], cy = s.cy[i], cz = s.cz[i], r = s.radius[i], rr = s.radius2[i];
     int near_any = 0;
     for (int k = 0; k < W; ++k) {
@@ -104,20 +104,22 @@ template <class T, sphere_mode SM>
     for (int k = 0; k < W; ++k) {
         const T fx = p.ox[k] - cx, fy = p.oy[k] - cy, fz = p.oz[k] - cz;
         const T c = sphere_c<T, SM>(fx, fy, fz, r, rr);
-        best.keep(k, sphere_t<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], best.a[k], best.inv_a[k], tmin),
-                  index_t<T>(i));
+        best.template keep<Ties>(
+            k, sphere_t<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], best.a[k], best.inv_a[k], tmin), id);
     }
 }
 
-// Spheres [begin, end) against the packet.
-template <class T, sphere_mode SM, bool CommonOrigin>
-[[gnu::always_inline]] inline void spheres_closest(const soa_scene<T>& s, size_t begin, size_t end, const packet<T>& p, T tmin,
-                            packet_best<T>& best) {
+// Spheres [begin, end) against the packet; Ties: a tree's leaf, the
+// spheres numbered as in the scene (packet_best::keep).
+template <class T, sphere_mode SM, bool CommonOrigin, bool Ties>
+[[gnu::always_inline]] inline void spheres_closest(const soa_scene<T>& s, size_t begin, size_t end, const packet<T>& p,
+                                                   T tmin, packet_best<T>& best) {
     for (size_t i = begin; i < end; ++i) {
+        const index_t<T> id = Ties ? index_t<T>(s.original[i]) : index_t<T>(i);
         if constexpr (CommonOrigin)
-            sphere_closest_common_origin<T, SM>(s, i, p, tmin, best);
+            sphere_closest_common_origin<T, SM, Ties>(s, i, id, p, tmin, best);
         else
-            sphere_closest_own_origins<T, SM>(s, i, p, tmin, best);
+            sphere_closest_own_origins<T, SM, Ties>(s, i, id, p, tmin, best);
     }
 }
 
