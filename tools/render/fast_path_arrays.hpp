@@ -189,7 +189,11 @@ struct soa_scene {
         e1x.push_back(e1.x), e1y.push_back(e1.y), e1z.push_back(e1.z);
         e2x.push_back(e2.x), e2y.push_back(e2.y), e2z.push_back(e2.z);
         // Centred on the centroid, through the farthest corner, made 1%
-        // larger so rounding in the cull test can never drop a hit.
+        // larger for the rounding of this centre and radius. The cull test's
+        // own rounding (relative to the distance from the ray's origin) is
+        // not covered: for a triangle smaller than that rounding, or a
+        // direction whose d.d underflows, the cull can skip a triangle the
+        // kernel would report hit, and brute force then differs from the tree.
         const vec3d centre = (x.a + x.b + x.c) / 3.0;
         const double r = 1.01 * std::max({length(x.a - centre), length(x.b - centre), length(x.c - centre)});
         bx.push_back(T(centre.x)), by.push_back(T(centre.y)), bz.push_back(T(centre.z));

@@ -33,9 +33,13 @@ namespace rt::render_tool {
 // scene's shapes): a triangle's corners, a plane's normal as given.
 // Directions: any non-zero finite one, subnormal components included (see
 // direction_max). Triangles whose edge products underflow are not rescaled.
-// The sphere kernels (fast_path.cpp) compute d.d plainly: a subnormal
-// direction there is a miss (the renderer's rays are camera and shadow rays
-// of ordinary length).
+// The sphere kernels (fast_path_spheres.hpp) compute a = d.d plainly and are
+// NOT scaled: a direction whose d.d underflows is a miss for every sphere,
+// closest and any hit, and that is not only a subnormal one: in float any
+// direction whose largest component is below about 1e-19 (1e-154 in double).
+// The renderer's own rays are not that short (camera rays have length about 1,
+// the image plane being at distance 1; shadow rays run from a hit to a light),
+// but nothing refuses a scene whose light sits that close to a surface.
 template <class T>
 inline constexpr T half_ulp = std::numeric_limits<T>::epsilon() / 2;
 

@@ -9,8 +9,14 @@
 
 // A ray direction's reciprocal for the slab test. A zero component becomes
 // 1e30 instead of infinity: (box side - origin) * 1e30 is then 0 or huge,
-// never 0 * infinity = NaN, and the ray counts as between the planes of a
-// slab it lies in (conservative: it is tested against the box's objects).
+// never 0 * infinity = NaN. This is not chapter 08's rule and not exact:
+// with the origin exactly on a face plane of a slab the ray lies in, that
+// face's parameter is 0, so the slab's interval ends at t = 0 instead of
+// covering every t, and a box the ray runs along counts as left at once.
+// What hides it is the boxes' padding (build_trees: 1e-6 of the scene's
+// magnitude), which keeps rays' origins off the faces of ordinary scenes.
+// Likewise a component that is non-zero but subnormal in float (or below
+// float's range) is treated as zero or as an overflowing reciprocal.
 inline float slab_reciprocal(float d) {
     return d == 0.0f ? std::copysign(1e30f, d) : 1.0f / d;
 }
