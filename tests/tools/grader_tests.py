@@ -252,6 +252,52 @@ class LinkRule(ToolTest):
         self.assertIsNone(out)
         self.assertIn(".gnu.linkonce", why)
 
+    # The red team's link-time tricks (C++ or asm in the exercise file): each is refused, or its object,
+    # once confined, defines nothing global but the exercise (what any other object could bind to).
+    TRICKS = {
+        "strong alias": 'extern "C" void png_alias() __attribute__((alias("_Z8exercisei")));',
+        "weak alias named like libc's memcpy": 'asm(".weak memcpy\\n.set memcpy, _Z8exercisei");',
+        "symbol version of libc's malloc": 'asm(".symver _Z8exercisei, malloc@@GLIBC_2.2.5");',
+        "ifunc resolver": 'static int impl(int x) { return x; }\nextern "C" void* pick() { return (void*)impl; }\n'
+                          'int other(int) __attribute__((ifunc("pick")));',
+        "global operator new": "#include <cstdlib>\n#include <new>\n"
+                               "void* operator new(std::size_t n) { return std::malloc(n); }",
+        "weak operator new": "#include <cstdlib>\n#include <new>\n"
+                             "__attribute__((weak)) void* operator new(std::size_t n) { return std::malloc(n); }",
+        "main": "int main() { return 0; }",
+        "_start": 'extern "C" void _start() {}',
+        "a TLS variable": "thread_local int counter = 0;",
+        "a weak TLS variable": "__attribute__((weak)) thread_local int counter = 0;",
+        "another chapter's exercise": "namespace rt::ch02 { int intersect_sphere(int x) { return x; } }",
+        "an explicit specialisation of a library template":
+            "namespace std { template <class T> struct hash; template <> struct hash<int> {"
+            " unsigned long operator()(int) const noexcept { return 0; } }; }\n"
+            "unsigned long use(int x) { return std::hash<int>{}(x); }",
+        "a common symbol": 'asm(".comm shared_buffer,64,8");',
+        "an absolute symbol": 'asm(".globl abs_sym\\n.set abs_sym, 0x1234");',
+        "a weak rt::write_png in asm": 'asm(".weak _ZN2rt9write_pngEv\\n_ZN2rt9write_pngEv: ret");',
+        "a COMDAT group signed by rt::run_chapter_program":
+            'asm(".section .text.g,\\"axG\\",@progbits,_ZN2rt18run_chapter_programEv,comdat\\n'
+            '.weak _ZN2rt18run_chapter_programEv\\n_ZN2rt18run_chapter_programEv: ret\\n.text");',
+    }
+
+    def test_link_tricks_gain_nothing(self):
+        from rtgrader import symbols
+        for k, (what, trick) in enumerate(self.TRICKS.items()):
+            with self.subTest(trick=what):
+                data, _ = self.compile(f"trick{k}", trick + "\nint exercise(int x) { return x + 1; }\n")
+                out, why = symbols.confine(data, {self.EXERCISE}, "unit_sphere.cpp")
+                if out is None:
+                    self.assertIn("The rule:", why)
+                    continue
+                confined = os.path.join(config.work, "link-rule", f"trick{k}.confined.o")
+                with open(confined, "wb") as f:
+                    f.write(out)
+                listed = subprocess.run(["nm", "-g", "--defined-only", confined], capture_output=True, text=True,
+                                        check=True).stdout
+                names = [line.split()[-1] for line in listed.splitlines() if line.strip()]
+                self.assertEqual(names, [self.EXERCISE], f"{what}: still global after confining")
+
     def test_static_helpers_and_the_exercise_pass_unchanged(self):
         from rtgrader import symbols
         text = "static int helper(int x) { return x; }\nnamespace { int other(int x) { return -x; } }\n" \
