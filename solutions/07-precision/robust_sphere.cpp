@@ -1,10 +1,10 @@
 // robust_sphere.cpp — reference solution for chapter 07, one function per step of the lecture.
 #include "07-precision/robust_sphere.hpp"
 
-#include "sphere_pieces.hpp"
-
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <utility>
 
@@ -71,6 +71,31 @@ root_pair<T> stable_roots(wide<T> a, wide<T> half_b, wide<T> c, wide<T> quarter_
     }
     return roots;
 }
+
+// The triple-precision sum behind step 3. The formulation study keeps the same
+// sum in formulations/sphere_pieces.hpp: a submission is this one file, so the
+// reference answer cannot include an instructor header.
+namespace sphere_pieces {
+
+// c = f.f - r^2 from its exact pieces: (hi + lo)^2 = hi^2 + 2 hi lo + lo^2 for
+// each component of f, each product split into value and error (two_prod), and
+// r^2 as a pair, all summed as if in three times W's precision (sum_k3). For a
+// ray origin a fraction of an ULP off the surface c is 10^9 times smaller than
+// f.f; a double-word sum would leave it tens of ULPs of error, this about one.
+template <class W>
+W exact_constant_term(const double_word<W> (&f)[3], double_word<W> radius_squared) {
+    std::array<W, 17> terms{};
+    std::size_t n = 0;
+    for (const double_word<W>& x : f) {
+        const double_word<W> square = two_prod(x.hi, x.hi), cross = two_prod(x.hi, W(2) * x.lo);
+        terms[n++] = square.hi, terms[n++] = square.lo, terms[n++] = cross.hi, terms[n++] = cross.lo;
+        terms[n++] = x.lo * x.lo;  // about 2^-100 of f.f in double: its own rounding cannot matter
+    }
+    terms[n++] = -radius_squared.hi, terms[n++] = -radius_squared.lo;
+    return sum_k3(terms);
+}
+
+}  // namespace sphere_pieces
 
 // Step 3: c = f.f - r^2 from the exact pieces of (hi + lo)^2 = hi^2 +
 // 2 hi lo + lo^2 and of r^2, added in triple precision. For an origin on

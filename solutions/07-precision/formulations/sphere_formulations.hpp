@@ -27,7 +27,7 @@
 #pragma once
 
 #include "07-precision/error_free.hpp"
-#include "../sphere_pieces.hpp"
+#include "sphere_pieces.hpp"
 
 #include "common/interval.hpp"
 #include "common/ray.hpp"
@@ -185,7 +185,7 @@ T unscaled_root(T t, int k) {
 }
 
 // c = f.f - r^2 from its exact pieces, in triple precision: the chapter 07
-// solution's step 3, shared (../sphere_pieces.hpp).
+// solution's step 3 (sphere_pieces.hpp; the solution holds its own copy, since a submission is one file).
 using sphere_pieces::exact_constant_term;
 
 // exact_constant_term for float data in double, kept out of line: only origins within

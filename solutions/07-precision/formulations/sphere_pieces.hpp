@@ -1,7 +1,8 @@
-// sphere_pieces.hpp — the parts of the robust sphere test that the reference
-// solution (robust_sphere.cpp), the formulation study's compensated and mixed
-// forms (formulations/sphere_formulations.hpp) and the renderer share, written
-// once. Instructor side: these are exercise answers (chapter 07, step 3).
+// sphere_pieces.hpp — the parts of the robust sphere test that the formulation
+// study's compensated and mixed forms (sphere_formulations.hpp) share.
+// The chapter 07 solution (../robust_sphere.cpp) holds the same sum in
+// its own file, because a submission, and so the reference answer, is one file.
+// Instructor side: these are exercise answers (chapter 07, step 3).
 #pragma once
 
 #include "07-precision/error_free.hpp"
