@@ -9,7 +9,7 @@
 // they stay outside the tree and are asked one by one, as in chapter 03
 // (scene_tree.hpp does this split; rt-render's --general uses it too).
 //
-//   ch08-acceleration [--level N] [--scene FILE] [the usual options]
+//   ch08-acceleration [--level N] [--scene FILE] [--heatmap] [the usual options]
 //
 // The chapter's own scene is drawn at level 4 (7,381 spheres), or at
 // --level N (1 + 9 + ... + 9^N spheres; level 6 is 597,871): the scene file
@@ -18,7 +18,15 @@
 // paths at 96x64 pixels, where smaller spheres are sub-pixel). With --scene
 // FILE, the file is drawn as written. The program prints the size of the
 // scene and the tree and how long the build took, then the usual report line.
+//
+// --heatmap also writes OUT-heatmap.png beside the picture (OUT.png): for
+// each pixel's primary ray, the boxes your tree opened, the objects your
+// traversal asked, and the objects brute force (chapter 03's loop) asked,
+// side by side on one logarithmic colour scale, with a line per map on
+// stdout (tree_heatmap.hpp says exactly what is counted). The heatmap's
+// passes run after the picture and are included in its reported time.
 #include "scene_tree.hpp"
+#include "tree_heatmap.hpp"
 #include "04-plane/plane.hpp"
 #include "06-shading/shading.hpp"
 #include "02-sphere/sphere.hpp"
@@ -30,6 +38,7 @@
 #include "common/spd.hpp"
 #include "common/timing.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -45,6 +54,13 @@ using namespace rt;
 constexpr int default_level = 4;  // the chapter's own picture
 int level_option = -1;            // --level N; -1: default_level, or the --scene file as written
 bool scene_option = false;        // --scene FILE given
+bool heatmap_option = false;      // --heatmap
+
+// OUT.png -> OUT-heatmap.png (a name without .png gets -heatmap.png appended).
+std::string heatmap_path(const std::string& out) {
+    const std::string stem = out.size() > 4 && out.compare(out.size() - 4, 4, ".png") == 0 ? out.substr(0, out.size() - 4) : out;
+    return stem + "-heatmap.png";
+}
 
 // The sphereflake at --level N in place of the scene's shapes (its first two
 // materials are the ground and the flake, as in scenes/ch08-sphereflake.json).
@@ -87,7 +103,25 @@ image render_scene(const program_options& opt, long& rays) {
         return ch06::shade(hit->point, hit->normal, -r.direction, m, world.lights, world.ambient, occluded);
     });
     rays = long(opt.width) * opt.height + shadow_rays.load();
+    if (heatmap_option) {
+        const std::vector<count_map> maps = ch08::tree_heatmap(world, a, dispatch, camera, opt.width, opt.height);
+        const std::string path = heatmap_path(opt.out);
+        write_png(draw_heatmap(maps), path);
+        std::printf("ch08: heatmap %s (left to right; one colour scale, 0 to %ld, logarithmic):\n%s", path.c_str(),
+                    std::max({maps[0].max(), maps[1].max(), maps[2].max()}), heatmap_legend(maps).c_str());
+    }
     return img;
+}
+
+// Takes --heatmap out of the arguments (the shared front end does not know it).
+void take_heatmap_option(int& argc, char** argv) {
+    for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--heatmap") != 0) continue;
+        heatmap_option = true;
+        for (int k = i; k + 1 <= argc; ++k) argv[k] = argv[k + 1];  // argv[argc] is the null pointer
+        --argc;
+        --i;
+    }
 }
 
 // Takes --level N out of the arguments (the shared front end does not know it).
@@ -115,6 +149,7 @@ bool take_level_option(int& argc, char** argv) {
 
 int main(int argc, char** argv) {
     if (!take_level_option(argc, argv)) return 1;
+    take_heatmap_option(argc, argv);
     for (int i = 1; i < argc; ++i) scene_option = scene_option || std::strcmp(argv[i], "--scene") == 0;
     for (int i = 1; i < argc; ++i)
         if (level_option >= 0 && std::strcmp(argv[i], "--scene") == 0) {
@@ -133,6 +168,8 @@ int main(int argc, char** argv) {
     // --level is this program's own option (take_level_option), so the shared help does not list it.
     if (help)
         std::printf("  --level INT                 draw the chapter's sphereflake at level N (1 + 9 + ... + 9^N "
-                    "spheres; default %d; not with --scene)\n", default_level);
+                    "spheres; default %d; not with --scene)\n"
+                    "  --heatmap                   also write OUT-heatmap.png: boxes opened and objects asked per pixel,\n"
+                    "                              by your tree and by brute force, on one colour scale\n", default_level);
     return status;
 }

@@ -6,6 +6,7 @@
 #include "03-scene-loop/scene_loop.hpp"
 #include "06-shading/shading.hpp"
 #include "08-acceleration/scene_tree.hpp"
+#include "08-acceleration/tree_heatmap.hpp"
 #include "02-sphere/sphere.hpp"
 #include "05-triangle/triangle.hpp"
 
@@ -57,7 +58,21 @@ image render_typed(const scene_description& d, bool use_tree, int width, int hei
     return img;
 }
 
+template <class T>
+std::vector<count_map> heatmap_typed(const scene_description& d, int width, int height) {
+    const scene<T> world = convert_scene<T>(d.world);
+    const scene_camera<T> camera(d.camera, width, height);
+    const auto dispatch =
+        object_dispatch(world, ch02::intersect_sphere<T>, ch04::intersect_plane<T>, ch05::intersect_triangle<T>);
+    return ch08::tree_heatmap(world, ch08::build_scene_tree(world), dispatch, camera, width, height);
+}
+
 }  // namespace
+
+std::vector<count_map> heatmap_general(const scene_description& scene, const scene_plan& plan, int width, int height) {
+    return plan.prec == precision::single ? heatmap_typed<float>(scene, width, height)
+                                          : heatmap_typed<double>(scene, width, height);
+}
 
 image render_general(const scene_description& scene, const scene_plan& plan, int width, int height, render_stats& stats) {
     return plan.prec == precision::single ? render_typed<float>(scene, plan.tree, width, height, stats)

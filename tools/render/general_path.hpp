@@ -11,6 +11,7 @@
 // path (fast_path.hpp) is measured against.
 #pragma once
 
+#include "common/heatmap.hpp"
 #include "common/image.hpp"
 #include "common/program.hpp"
 #include "common/scene_file.hpp"
@@ -22,5 +23,13 @@ namespace rt::render_tool {
 // In plan.prec; through chapter 08's tree when plan.tree says a tree pays,
 // else through chapter 03's loop. rays counts primary and shadow rays.
 image render_general(const scene_description& scene, const scene_plan& plan, int width, int height, render_stats& stats);
+
+// --heatmap: per pixel's primary ray, in plan.prec, the boxes opened and
+// objects asked by chapter 08's closest_hit over chapter 08's tree (built
+// here even where the plan renders without one), and brute force's objects
+// asked (chapter 03's loop). Counted on this general path whichever path drew
+// the picture (the specialised path's packets are not counted).
+// 08-acceleration/tree_heatmap.hpp says what is counted.
+std::vector<count_map> heatmap_general(const scene_description& scene, const scene_plan& plan, int width, int height);
 
 }  // namespace rt::render_tool

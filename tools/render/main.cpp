@@ -1,7 +1,7 @@
 // rt-render — renders any scene file with the exercises the build selects.
 //
 //   rt-render SCENE.json [--out FILE.png] [--width W] [--height H]
-//             [--precision auto|float|double] [--bound B] [--general] [--error]
+//             [--precision auto|float|double] [--bound B] [--general] [--error] [--heatmap]
 //
 // Before rendering it prints its plan in one line: what the scene holds,
 // what the render loop leaves out, and which precision and sphere
@@ -73,13 +73,25 @@ void report_error(const scene_description& d, const scene_plan& plan, int width,
                 at(0.99), at(1.0), plan.bound, plan.estimated_error);
 }
 
+// --heatmap: OUT.png -> OUT-heatmap.png, the counts of heatmap_general, one
+// line per map on stdout.
+void write_heatmap(const scene_description& d, const scene_plan& plan, int width, int height, const std::string& out) {
+    const bool png = out.size() > 4 && out.compare(out.size() - 4, 4, ".png") == 0;
+    const std::string path = (png ? out.substr(0, out.size() - 4) : out) + "-heatmap.png";
+    const std::vector<count_map> maps = heatmap_general(d, plan, width, height);
+    write_png(draw_heatmap(maps), path);
+    std::printf("heatmap %s (counted on the general path, chapter 08's tree; left to right; one colour scale, 0 to "
+                "%ld, logarithmic):\n%s",
+                path.c_str(), std::max({maps[0].max(), maps[1].max(), maps[2].max()}), heatmap_legend(maps).c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     std::string scene_path, out = "out/render.png", prec = "auto";
     int width = 0, height = 0;
     double bound = 1e-3;
-    bool general = false, error = false;
+    bool general = false, error = false, heatmap = false;
 
     CLI::App app{"rt-render: renders a scene file (scenes/README.md) with the exercises this build selects"};
     app.add_option("scene", scene_path, "scene file (.json)")->required();
@@ -93,6 +105,9 @@ int main(int argc, char** argv) {
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
     app.add_flag("--general", general, "force the general path (every loop, chapter exercises) to measure the saving");
+    app.add_flag("--heatmap", heatmap,
+                 "also write OUT-heatmap.png: boxes opened and objects asked per pixel by chapter 08's tree "
+                 "(counted on the general path) and by brute force");
     app.add_flag("--error", error, "measure the primary hits' error against a long double reference");
     try {
         app.parse(argc, argv);
@@ -129,6 +144,7 @@ int main(int argc, char** argv) {
                     general ? "" : fast_path_isa(), seconds * 1e3, stats.setup_seconds * 1e3, tracing * 1e3,
                     stats.rays, long(w) * long(h), double(stats.rays) / tracing / 1e6, out.c_str());
         if (error) report_error(scene, plan, w, h);
+        if (heatmap) write_heatmap(scene, plan, w, h, out);
         return 0;
     } catch (const scene_error& e) {
         std::fprintf(stderr, "rt-render: %s\n", e.what());
