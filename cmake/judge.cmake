@@ -9,7 +9,7 @@
 # and writes rt_judges/chNN.json (their paths) for the grader.
 #
 # Adding a chapter: write tests/support/rpc/chNN.cpp (one RT_RPC_FUNCTION line and one forwarding stub
-# per exercise function; a new struct in its arguments needs a fields() overload, see wire.hpp; an
+# per exercise function; a new struct in its arguments needs a fields() overload, see exact_bits.hpp; an
 # object callback goes through RT_RPC_FORWARD_SERVED; tests/support/rpc/README.md, "Adding a chapter").
 # Off by default in the sanitizer build and in a student's build (the kit): the grader configures its
 # own tree with RT_JUDGE=ON, and there the judges would only compile the tests once more.
@@ -22,10 +22,10 @@ endif()
 set(RT_RPC_DIR "${PROJECT_SOURCE_DIR}/tests/support/rpc")
 
 if(RT_JUDGE)
-  add_library(rt_rpc STATIC "${RT_RPC_DIR}/channel.cpp")
+  add_library(rt_rpc STATIC "${RT_RPC_DIR}/messages.cpp")
   target_include_directories(rt_rpc PUBLIC "${PROJECT_SOURCE_DIR}/tests/support")
   target_link_libraries(rt_rpc PUBLIC rt_common)
-  add_library(rt_rpc_judge STATIC "${RT_RPC_DIR}/judge.cpp")
+  add_library(rt_rpc_judge STATIC "${RT_RPC_DIR}/judge_side.cpp")
   target_link_libraries(rt_rpc_judge PUBLIC rt_rpc)
   # The mains, compiled once for every chapter: the judges' (doctest's implementation, the slowest file
   # of a judge), one for the public judges and one for the hidden ones, and the runners'.
@@ -38,7 +38,7 @@ if(RT_JUDGE)
     target_compile_options(rt_judge_main_${kind} PRIVATE -O0)
   endforeach()
   target_compile_definitions(rt_judge_main_public PRIVATE RT_JUDGE_PUBLIC)
-  add_library(rt_rpc_runner_main OBJECT EXCLUDE_FROM_ALL "${RT_RPC_DIR}/runner.cpp")
+  add_library(rt_rpc_runner_main OBJECT EXCLUDE_FROM_ALL "${RT_RPC_DIR}/runner_main.cpp")
   target_link_libraries(rt_rpc_runner_main PRIVATE rt_rpc)
 endif()
 

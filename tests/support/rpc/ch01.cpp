@@ -1,5 +1,5 @@
-// Chapter 01's exercise functions for the judge and the runner (table.hpp explains the two halves).
-#include "table.hpp"
+// Chapter 01's exercise functions for the judge and the runner (table_builds.hpp explains the two halves).
+#include "table_builds.hpp"
 #include "01-unit-sphere/unit_sphere.hpp"
 
 #if RT_RPC_DEFINES_STUBS

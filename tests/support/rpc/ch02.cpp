@@ -1,5 +1,5 @@
-// Chapter 02's exercise functions for the judge and the runner (table.hpp explains the two halves).
-#include "table.hpp"
+// Chapter 02's exercise functions for the judge and the runner (table_builds.hpp explains the two halves).
+#include "table_builds.hpp"
 #include "02-sphere/sphere.hpp"
 
 #if RT_RPC_DEFINES_STUBS

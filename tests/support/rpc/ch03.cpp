@@ -1,9 +1,9 @@
-// Chapter 03's exercise functions for the judge and the runner (table.hpp explains the two halves).
+// Chapter 03's exercise functions for the judge and the runner (table_builds.hpp explains the two halves).
 // The intersector travels as a number: the judge answers each object the student's loop asks about
-// (served_wire.hpp) with the object's own test, and its record of those calls decides the test's rules
+// (served_by_judge.hpp) with the object's own test, and its record of those calls decides the test's rules
 // (served.hpp).
-#include "served_wire.hpp"
-#include "table.hpp"
+#include "served_by_judge.hpp"
+#include "table_builds.hpp"
 #include "03-scene-loop/scene_loop.hpp"
 
 #if RT_RPC_DEFINES_STUBS

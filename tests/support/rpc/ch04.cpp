@@ -1,6 +1,6 @@
-// Chapter 04's exercise functions for the judge and the runner (table.hpp explains the two halves).
+// Chapter 04's exercise functions for the judge and the runner (table_builds.hpp explains the two halves).
 #include "04-plane/plane.hpp"
-#include "table.hpp"
+#include "table_builds.hpp"
 
 #if RT_RPC_DEFINES_STUBS
 namespace rt::ch04 {

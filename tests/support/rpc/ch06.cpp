@@ -1,13 +1,13 @@
-// Chapter 06's exercise functions for the judge and the runner (table.hpp explains the two halves).
+// Chapter 06's exercise functions for the judge and the runner (table_builds.hpp explains the two halves).
 // The occlusion test travels as a number: the judge keeps the shadow queries shade() may ask (the
 // student's own shadow_ray for every light, on both sides of the surface) with the test's answer to
-// each, and answers every question the runner sends (served.hpp, served_wire.hpp).
-#include "served_wire.hpp"
-#include "table.hpp"
+// each, and answers every question the runner sends (served.hpp, served_by_judge.hpp).
+#include "served_by_judge.hpp"
+#include "table_builds.hpp"
 #include "06-shading/shading.hpp"
 
 namespace rt::ch06 {
-// shadow_ray's result travels like the course's other structs (wire.hpp).
+// shadow_ray's result travels like the course's other structs (exact_bits.hpp).
 template <class T, class F>
 void fields(shadow_query<T>& x, F&& f) {
     f(x.r, x.range);

@@ -1,8 +1,8 @@
-// Chapter 07's exercise functions for the judge and the runner (table.hpp explains the two halves).
+// Chapter 07's exercise functions for the judge and the runner (table_builds.hpp explains the two halves).
 #include "07-precision/robust_sphere.hpp"
-#include "table.hpp"
+#include "table_builds.hpp"
 
-// How chapter 07's own types travel (wire.hpp: a struct lists its members once). Found by
+// How chapter 07's own types travel (exact_bits.hpp: a struct lists its members once). Found by
 // argument-dependent lookup, so they live in the types' namespaces.
 namespace rt {
 template <class W, class F> void fields(double_word<W>& x, F&& f) { f(x.hi, x.lo); }

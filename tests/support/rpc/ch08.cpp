@@ -1,14 +1,14 @@
-// Chapter 08's exercise functions for the judge and the runner (table.hpp explains the two halves).
+// Chapter 08's exercise functions for the judge and the runner (table_builds.hpp explains the two halves).
 // A tree argument travels whole (its nodes and order) only when it is not the tree this judge sent to
 // this runner last (the tests ask hundreds of rays through one tree); the leaf intersector travels as
-// a number: the judge answers each object the student's traversal asks about (served_wire.hpp) with
+// a number: the judge answers each object the student's traversal asks about (served_by_judge.hpp) with
 // the object's own test, and its record of those calls decides the test's rules (served.hpp).
 #include "08-acceleration/bvh.hpp"
-#include "served_wire.hpp"
-#include "table.hpp"
+#include "served_by_judge.hpp"
+#include "table_builds.hpp"
 
 namespace rt::ch08 {
-// The chapter's structs travel like the course's others (wire.hpp).
+// The chapter's structs travel like the course's others (exact_bits.hpp).
 template <class T, class F>
 void fields(aabb<T>& x, F&& f) {
     f(x.lo, x.hi);

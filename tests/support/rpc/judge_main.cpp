@@ -3,7 +3,7 @@
 // The judge holds the course's tests and no student code, so what it reports is the verdict. Under the
 // grader (RT_JUDGE_CONTROL_FD) one judge process runs all the cases it is given, and a doctest listener
 // reports each on the control socket:
-//   B  at the case's start: the runner's state and the case's name (judge.cpp, begin_case), after which
+//   B  at the case's start: the runner's state and the case's name (judge_side.cpp, begin_case), after which
 //      the grader answers with the runner to use;
 //   E  once the case is over: "failed asserts failed-asserts runner-broke", a newline, and doctest's
 //      report of that case (the feedback; doctest writes into a buffer, not to the terminal).
@@ -11,7 +11,7 @@
 #define DOCTEST_CONFIG_IMPLEMENT
 #include <doctest/doctest.h>
 
-#include "judge.hpp"
+#include "judge_side.hpp"
 
 #include <csignal>
 #include <cstdlib>

@@ -3,7 +3,7 @@
 // Chapter 03's closest_hit and chapter 08's traversal call back "does the ray hit object i inside this
 // range?". Under the grader the student's code runs in the runner and the tests in the judge. The judge
 // keeps the test's callback and answers each call the runner sends with the object's own test (the
-// test's "wall", the reference sphere or triangle), after checking the test's rules (served_wire.hpp
+// test's "wall", the reference sphere or triangle), after checking the test's rules (served_by_judge.hpp
 // says why nothing is answered from data in the runner).
 //
 // How the code under test uses the callback is decided from the judge's own RECORD of the calls it
@@ -216,7 +216,7 @@ private:
 // The callable a test gives as its callback (chapter 03's object_intersector, chapter 08's
 // leaf_intersector): objects 0 .. count-1, each tested by `test` (instructor code), with the test's
 // rules. Under the grader the judge keeps it and answers the runner's calls through an object_server
-// (served_wire.hpp); in the test's own process (a student's build) it answers through an object_server
+// (served_by_judge.hpp); in the test's own process (a student's build) it answers through an object_server
 // too, a new one whenever the ray changes (a new call of the exercise), and throws broken_rule at the
 // call that breaks a rule, so the tests behave the same in both places.
 template <class T>

@@ -1,4 +1,4 @@
-// table.hpp — what a chapter's table (tests/support/rpc/chNN.cpp) is made of.
+// table_builds.hpp — what a chapter's table (tests/support/rpc/chNN.cpp) is made of.
 //
 // A table lists the chapter's exercise functions once, and is compiled in one of three ways:
 //   RT_RPC_JUDGE        into the chapter's judges: each exercise function is a stub that forwards its
@@ -15,19 +15,19 @@
 
 #if defined(RT_RPC_JUDGE)
 
-#include "judge.hpp"
+#include "judge_side.hpp"
 
 #define RT_RPC_DEFINES_STUBS 1
 // Inside the judge's definition of `name`: send the call, return the answer.
 #define RT_RPC_FORWARD(name, ...) \
     ::rt::rpc::forward<decltype(name<T>(__VA_ARGS__))>(::rt::rpc::call_name<T>(RT_RPC_CHAPTER "::" #name), __VA_ARGS__)
 // The same with the result type R given, for a call whose arguments are not the function's own (a
-// served callback travels as its table, served_wire.hpp).
+// served callback travels as its table, served_by_judge.hpp).
 #define RT_RPC_FORWARD_AS(R, name, ...) \
     ::rt::rpc::forward<R>(::rt::rpc::call_name<T>(RT_RPC_CHAPTER "::" #name), __VA_ARGS__)
 // A call that takes an object callback (chapter 03's closest_hit, chapter 08's traversal): the judge
 // keeps `callback` (for the call's ray r) and the arguments name its stand-in `served`; once the call
-// is over, the judge's record of the callback's calls decides (served_wire.hpp, judged_call).
+// is over, the judge's record of the callback's calls decides (served_by_judge.hpp, judged_call).
 #define RT_RPC_FORWARD_SERVED(R, name, callback, r, ...)                                                      \
     ::rt::rpc::judged_call<R>(callback, r, [&](const auto& served) {                                          \
         return ::rt::rpc::forward<R>(::rt::rpc::call_name<T>(RT_RPC_CHAPTER "::" #name), __VA_ARGS__);        \
@@ -53,7 +53,7 @@ template <class R, class... A>
 
 #elif defined(RT_RPC_RUNNER)
 
-#include "runner.hpp"
+#include "runner_side.hpp"
 
 #define RT_RPC_DEFINES_STUBS 0
 #define RT_RPC_FUNCTION(ns, name)                                                                  \

@@ -1,16 +1,16 @@
-// channel.hpp — the messages between the judge and the runner, and the exceptions that cross.
+// messages.hpp — the messages between the judge and the runner, and the exceptions that cross.
 //
 // One call: the judge sends `call` (the call's number, the function's name and its arguments); the runner
 // runs the student's function and sends `answer` (the result) or `threw` (the exception). While a call of
 // chapter 03's closest_hit, chapter 06's shade or chapter 08's traversal is outstanding, the runner sends
 // `call_back` for each question the student's code asks its callback; the judge answers it
-// (`call_back_answer`) and keeps waiting, so the judge sees every call the code makes (served_wire.hpp
+// (`call_back_answer`) and keeps waiting, so the judge sees every call the code makes (served_by_judge.hpp
 // says why these are not answered in the runner). Every message about a call starts with the call's
-// 32-bit number: a message about another call is garbage (judge.cpp, call_remote). Before its first call
-// to a runner the judge sends `same_cpu`: the CPU the two share (judge.cpp, share_cpu).
+// 32-bit number: a message about another call is garbage (judge_side.cpp, call_remote). Before its first call
+// to a runner the judge sends `same_cpu`: the CPU the two share (judge_side.cpp, share_cpu).
 #pragma once
 
-#include "wire.hpp"
+#include "exact_bits.hpp"
 
 #include <functional>
 #include <string>
@@ -18,7 +18,7 @@
 namespace rt::rpc {
 
 // --- messages -------------------------------------------------------------------------------------------
-// Every message is a kind byte and its bytes, framed by a 32-bit length (channel.cpp).
+// Every message is a kind byte and its bytes, framed by a 32-bit length (messages.cpp).
 enum class kind : std::uint8_t {
     call = 1,             // judge -> runner: call number, function name, arguments
     answer = 2,           // runner -> judge: call number, the result

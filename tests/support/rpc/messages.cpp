@@ -1,5 +1,5 @@
-// channel.cpp — framed messages on the judge-runner socket, and exceptions in transit.
-#include "channel.hpp"
+// messages.cpp — framed messages on the judge-runner socket, and exceptions in transit.
+#include "messages.hpp"
 
 #include "common/stub.hpp"
 

@@ -1,12 +1,12 @@
-// runner.hpp — the runner's side: it holds the student's exercise code and only answers calls.
+// runner_side.hpp — the runner's side: it holds the student's exercise code and only answers calls.
 //
 // Each chapter's table (tests/support/rpc/chNN.cpp, compiled with RT_RPC_RUNNER) registers its
-// functions with serve(); the runner's main() (runner.cpp) then answers the judge's calls until the
+// functions with serve(); the runner's main() (runner_main.cpp) then answers the judge's calls until the
 // judge closes the channel. The runner decides nothing: whatever it prints, writes or returns as its
 // exit status is ignored by the grader; only its answers reach the tests, in the judge.
 #pragma once
 
-#include "channel.hpp"
+#include "messages.hpp"
 
 #include <string>
 #include <tuple>

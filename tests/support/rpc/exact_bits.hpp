@@ -1,4 +1,4 @@
-// wire.hpp — how values travel between the judge and the runner (tools/grader/README.md, "Who decides").
+// exact_bits.hpp — how values travel between the judge and the runner (tools/grader/README.md, "Who decides").
 //
 // The judge (the tests, without any student code) and the runner (the student's exercise code, without
 // any test) talk over one socket. Every value is sent as its exact bits, so a test sees the very float or
@@ -166,13 +166,13 @@ void get(reader& r, std::vector<T>& v) {
 
 // --- callbacks ------------------------------------------------------------------------------------------
 // An object callback (chapter 03's intersector, chapter 08's leaf test) travels as a number: the judge
-// keeps what answers it and the runner's code asks the judge for every call (served_wire.hpp).
+// keeps what answers it and the runner's code asks the judge for every call (served_by_judge.hpp).
 using erased_callback = std::function<void(reader& arguments, writer& result)>;
-std::uint32_t judge_keep_callback(erased_callback f);                          // judge side (judge.cpp)
-std::string runner_call_back(std::uint32_t id, const std::string& arguments);  // runner side (runner.cpp)
+std::uint32_t judge_keep_callback(erased_callback f);                          // judge side (judge_side.cpp)
+std::string runner_call_back(std::uint32_t id, const std::string& arguments);  // runner side (runner_main.cpp)
 
 // A std::function argument has no put(): it never crosses as code. The judge's stub sends what the
 // test's callback stands for: a number for an object callback, the answers for chapter 06's occlusion
-// test (served.hpp, served_wire.hpp).
+// test (served.hpp, served_by_judge.hpp).
 
 }  // namespace rt::rpc

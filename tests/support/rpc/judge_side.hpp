@@ -1,4 +1,4 @@
-// judge.hpp — the judge's side of a call: a test calls an exercise function, the judge's stub for that
+// judge_side.hpp — the judge's side of a call: a test calls an exercise function, the judge's stub for that
 // function (tests/support/rpc/chNN.cpp) sends the arguments to the runner and returns its answer.
 //
 // The judge is a doctest program built from the course's tests and this library, without any student
@@ -6,7 +6,7 @@
 // ever gives back answers (exact bits) or exceptions.
 #pragma once
 
-#include "channel.hpp"
+#include "messages.hpp"
 
 #include <cstdint>
 #include <string>

@@ -1,4 +1,4 @@
-// served_wire.hpp — how the tests' callbacks travel (served.hpp says what they are and which rules they check).
+// served_by_judge.hpp — how the tests' callbacks travel (served.hpp says what they are and which rules they check).
 //
 // Chapter 03's intersector and chapter 08's leaf test: the judge answers every call. Its stub keeps the
 // test's callback IN THE JUDGE, in an object_server with the test's rules (budget, expected calls); the
@@ -18,10 +18,10 @@
 #pragma once
 
 #include "served.hpp"
-#include "wire.hpp"
+#include "exact_bits.hpp"
 
 #if defined(RT_RPC_JUDGE)
-#include "judge.hpp"
+#include "judge_side.hpp"
 #endif
 
 #include <memory>
@@ -30,7 +30,7 @@
 namespace rt::rpc {
 
 // Judge side: what an object callback argument becomes for one call of the exercise, the server of the
-// test's callback for the call's ray. put() registers it with the call (judge.cpp keeps it until the
+// test's callback for the call's ray. put() registers it with the call (judge_side.cpp keeps it until the
 // call's answer) and sends only its number. A callback that is not rt::test::served_objects cannot be
 // answered by the grader: a test error.
 template <class T>
@@ -49,7 +49,7 @@ judge_callback<T> judge_served(const Callback& f, const ray<T>& r) {
 
 #if defined(RT_RPC_JUDGE)
 // One call of an exercise that takes an object callback, made by the judge's stub: `send(callback)`
-// forwards the call with the callback's number (RT_RPC_FORWARD_SERVED, table.hpp). Once it is over, the
+// forwards the call with the callback's number (RT_RPC_FORWARD_SERVED, table_builds.hpp). Once it is over, the
 // record of the calls the judge served decides: a broken rule throws broken_rule (with the call's
 // numbers in a public judge, the rule alone in a hidden one), whatever the runner answered or threw.
 template <class R, class T, class Callback, class Send>

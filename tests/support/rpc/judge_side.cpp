@@ -1,11 +1,11 @@
-// judge.cpp — the judge's connection to the runner.
+// judge_side.cpp — the judge's connection to the runner.
 //
 // The grader runs one judge process for many test cases and gives it the runner over a control socket
 // (RT_JUDGE_CONTROL_FD): at the start of each case the judge says which case begins and whether its
 // runner broke, and the grader answers "go on" or passes a fresh runner's socket (SCM_RIGHTS). Without
 // the grader, RT_RUNNER=path/to/chNN_runner makes the judge start the runner itself (for the course's own
 // tests and for debugging), and start it again after it broke.
-#include "judge.hpp"
+#include "judge_side.hpp"
 
 #include <cctype>
 #include <cerrno>

@@ -1,11 +1,11 @@
-// runner.cpp — main() of every chNN_runner: answer the judge's calls with the student's code.
+// runner_main.cpp — main() of every chNN_runner: answer the judge's calls with the student's code.
 //
 // One runner serves a chapter's cases one after another (the grader hands its socket to each judge in
 // turn) until the grader closes the channel; whatever state the student's code keeps lives on.
 //
 // `chNN_runner --probe` only starts and exits: the grader runs it once per chapter, so a static
 // initialiser that hangs or crashes fails the chapter's tests at once instead of one timeout per test.
-#include "runner.hpp"
+#include "runner_side.hpp"
 
 #include <cstdlib>
 #include <cstring>
@@ -24,7 +24,7 @@ std::map<std::string, handler>& handlers() {
 }
 
 int judge_fd = -1;
-std::uint32_t current_call = 0;  // the number of the call being answered (judge.cpp, call_remote)
+std::uint32_t current_call = 0;  // the number of the call being answered (judge_side.cpp, call_remote)
 
 std::string numbered(std::uint32_t number, const std::string& bytes) {
     writer w;
@@ -53,7 +53,7 @@ void answer(channel& ch, const std::string& bytes) {
     }
 }
 
-// The judge's CPU (judge.cpp, share_cpu): the two take turns, and waking another CPU for every turn
+// The judge's CPU (judge_side.cpp, share_cpu): the two take turns, and waking another CPU for every turn
 // costs more than the call.
 void run_on(const std::string& bytes) {
     reader r(bytes);
