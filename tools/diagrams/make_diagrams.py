@@ -581,88 +581,175 @@ def float_spacing():
 
 
 def slabs():
-    svg = Svg(900, 430, "The slab test for a box")
-    svg.text(20, 30, "A box is the overlap of slabs; a ray hits it when its slab intervals overlap", size=17,
+    svg = Svg(960, 470, "The slab test for a box")
+    svg.text(20, 30, "A box is the overlap of two slabs; a ray is inside the box while it is inside both", size=17,
              weight="bold")
-    f = Frame(120, 370, 50)
-    bx0, bx1, by0, by1 = 4.0, 9.0, 2.0, 5.5
-    svg.rect(*f(bx0, 6.2), (bx1 - bx0) * f.s, 6.4 * f.s, colour=None, fill=FILLS[1], opacity=0.6)
-    svg.rect(*f(-1.5, by1), 14.5 * f.s, (by1 - by0) * f.s, colour=None, fill=FILLS[2], opacity=0.6)
+    f = Frame(70, 330, 55)
+    bx0, bx1, by0, by1 = 4.0, 8.0, 2.0, 4.0
+    top, bottom, left, right = 5.2, -0.6, -0.8, 13.0
+    svg.rect(*f(bx0, top), (bx1 - bx0) * f.s, (top - bottom) * f.s, colour=None, fill=FILLS[1], opacity=0.6)
+    svg.rect(*f(left, by1), (right - left) * f.s, (by1 - by0) * f.s, colour=None, fill=FILLS[2], opacity=0.6)
     svg.rect(*f(bx0, by1), (bx1 - bx0) * f.s, (by1 - by0) * f.s, colour=INK, width=2.5)
-    svg.text(*f(bx0 + 0.1, 5.85), "x slab: x0 < x < x1", size=13, colour=RAY)
-    svg.text(*f(9.2, by0 + 0.15), "y slab: y0 < y < y1", size=13, colour=NORMAL)
+    for x, name in ((bx0, "x0"), (bx1, "x1")):
+        svg.text(*f(x, top + 0.1), name, size=13, colour=RAY, anchor="middle")
+    for y, name in ((by0, "y0"), (by1, "y1")):
+        svg.text(*f(right + 0.1, y - 0.08), name, size=13, colour=NORMAL)
+    svg.text(*f(bx0 + 0.1, bottom + 0.15), "x slab", size=13, colour=RAY)
+    svg.text(*f(left + 0.1, by1 - 0.35), "y slab", size=13, colour=NORMAL)
 
-    def ray(o, d, colour):
-        """One ray, where it crosses each slab's planes (ahead of o), and its stretch inside the box."""
-        def at(t):
-            return (o[0] + t * d[0], o[1] + t * d[1])
-        tx = sorted(((bx0 - o[0]) / d[0], (bx1 - o[0]) / d[0]))
-        ty = sorted(((by0 - o[1]) / d[1], (by1 - o[1]) / d[1]))
-        near, far = max(tx[0], ty[0]), min(tx[1], ty[1])
-        svg.dot(*f(*o), colour)
-        t_end = min(max(tx[1], ty[1]) + 1.2, (11.8 - o[0]) / d[0], (o[1] + 0.3) / max(-d[1], 1e-9))
-        svg.line(*f(*o), *f(*at(t_end)), colour, 2.2, arrow=True)
-        if near < far:
-            svg.line(*f(*at(near)), *f(*at(far)), HIT, 5)
-        for ts, ring in ((tx, RAY), (ty, NORMAL)):  # where the ray crosses each slab's planes
-            for t in ts:
-                if 0 < t < t_end:
-                    svg.circle(*f(*at(t)), 6, ring, 2, fill="#ffffff")
+    # The black ray hits: it enters the x slab, then the y slab, leaves the x slab, then the y slab.
+    o, d = (0.0, -0.2), (1.0, 0.4)
+    at = lambda t: (o[0] + t * d[0], o[1] + t * d[1])
+    tx = ((bx0 - o[0]) / d[0], (bx1 - o[0]) / d[0])
+    ty = ((by0 - o[1]) / d[1], (by1 - o[1]) / d[1])
+    near, far = max(tx[0], ty[0]), min(tx[1], ty[1])
+    svg.dot(*f(*o))
+    svg.text(*f(o[0] - 0.1, o[1] - 0.45), "o", size=14, italic=True)
+    svg.line(*f(*o), *f(*at(12.6)), INK, 2.2, arrow=True)
+    svg.line(*f(*at(near)), *f(*at(far)), HIT, 5)
+    labels = ((tx[0], RAY, "t_x0: enters x slab", (0.15, -0.55)), (ty[0], NORMAL, "t_y0: enters y slab = t_near", (0.2, -0.5)),
+              (tx[1], RAY, "t_x1: leaves x slab = t_far", (0.2, -0.5)), (ty[1], NORMAL, "t_y1: leaves y slab", (-0.3, 0.35)))
+    for t, ring, text, (dx, dy) in labels:
+        x, y = at(t)
+        svg.circle(*f(x, y), 6, ring, 2.2, fill="#ffffff")
+        svg.text(*f(x + dx, y + dy), text, size=13, colour=ring)
 
-    ray((0.5, 0.3), unit(1.0, 0.45), INK)
-    ray((-1.2, 4.6), unit(1.0, -0.6), GUIDE)
-    svg.text(600, 340, "black ray: a hit, its x and y", size=13)
-    svg.text(600, 356, "intervals overlap (red)", size=13)
-    svg.text(600, 300, "grey ray: a miss, it leaves the y", size=13, colour=GUIDE)
-    svg.text(600, 316, "slab before it enters the x slab", size=13, colour=GUIDE)
-    svg.text(20, 410, "t_near = max(entries), t_far = min(exits); a hit when t_near ≤ t_far (and the range "
-             "overlaps): the red stretch is inside the box.", size=13)
+    # The grey ray misses: it leaves the y slab before it enters the x slab.
+    o2, d2 = (0.0, 2.4), (1.0, 0.6)
+    at2 = lambda t: (o2[0] + t * d2[0], o2[1] + t * d2[1])
+    svg.dot(*f(*o2), GUIDE)
+    svg.line(*f(*o2), *f(*at2(4.6)), GUIDE, 2.2, arrow=True)
+    for t, ring, text, (dx, dy) in (((by1 - o2[1]) / d2[1], NORMAL, "leaves y slab", (-2.6, 0.15)),
+                                    ((bx0 - o2[0]) / d2[0], RAY, "then enters x slab: a miss", (0.3, -0.1))):
+        x, y = at2(t)
+        svg.circle(*f(x, y), 6, ring, 2.2, fill="#ffffff")
+        svg.text(*f(x + dx, y + dy), text, size=13, colour=GUIDE)
+
+    # The black ray's two intervals of t, and their overlap.
+    t0, s = 40, 52
+    axis_y = 400
+    svg.line(t0, axis_y + 22, t0 + 12 * s, axis_y + 22, GUIDE, 1.2, arrow=True)
+    svg.text(t0 + 12 * s + 8, axis_y + 26, "t", size=14, italic=True)
+    svg.line(t0 + tx[0] * s, axis_y, t0 + tx[1] * s, axis_y, RAY, 6)
+    svg.text(t0 + tx[0] * s - 6, axis_y + 5, "x interval", size=13, colour=RAY, anchor="end")
+    svg.line(t0 + ty[0] * s, axis_y + 12, t0 + ty[1] * s, axis_y + 12, NORMAL, 6)
+    svg.text(t0 + ty[1] * s + 6, axis_y + 17, "y interval", size=13, colour=NORMAL)
+    svg.line(t0 + near * s, axis_y + 22, t0 + far * s, axis_y + 22, HIT, 5)
+    svg.text(t0 + (near + far) / 2 * s, axis_y + 40, "overlap = inside the box", size=13, colour=HIT, anchor="middle")
+    svg.text(20, 460, "t_near = max(entries), t_far = min(exits); a hit when t_near ≤ t_far and [t_near, t_far] "
+             "meets the ray's range.", size=13)
     return svg
 
 
 def bvh():
-    svg = Svg(900, 420, "A bounding volume hierarchy")
-    svg.text(20, 30, "Boxes around boxes: a ray that misses a box skips everything inside it", size=17,
-             weight="bold")
-    f = Frame(30, 388, 40)
-    prims = [(1.5, 1.6, 0.7), (2.9, 3.8, 0.6), (4.2, 1.9, 0.8), (7.6, 5.8, 0.6), (9.1, 4.6, 0.7), (9.4, 7.0, 0.5)]
-    groups = {"L": [0, 1, 2], "R": [3, 4, 5]}
-    colours = {"root": INK, "L": RAY, "R": HIT}
+    svg = Svg(960, 470, "A ray's walk through a bounding volume hierarchy")
+    svg.text(20, 30, "A ray's walk through the tree: numbered boxes are opened in that order, the rest skipped",
+             size=17, weight="bold")
+    f = Frame(30, 436, 40)
+    prims = [(1.5, 1.5, 0.6), (2.8, 2.8, 0.5), (1.6, 6.4, 0.6), (3.0, 7.4, 0.5),
+             (6.8, 2.0, 0.6), (8.2, 1.2, 0.5), (7.5, 6.0, 0.6), (9.0, 7.0, 0.6)]
+    # node: (name, children or object list)
+    tree = {"root": ["L", "R"], "L": ["LA", "LB"], "R": ["RA", "RB"],
+            "LA": [0, 1], "LB": [2, 3], "RA": [4, 5], "RB": [6, 7]}
 
-    def bounds(ids, pad):
-        xs0 = min(prims[i][0] - prims[i][2] for i in ids) - pad
-        xs1 = max(prims[i][0] + prims[i][2] for i in ids) + pad
-        ys0 = min(prims[i][1] - prims[i][2] for i in ids) - pad
-        ys1 = max(prims[i][1] + prims[i][2] for i in ids) + pad
-        return xs0, xs1, ys0, ys1
+    def objects(name):
+        kids = tree[name]
+        return kids if isinstance(kids[0], int) else [i for k in kids for i in objects(k)]
 
-    for name, ids, pad, dash in (("root", list(range(6)), 0.35, None), ("L", groups["L"], 0.12, "7 4"),
-                                 ("R", groups["R"], 0.12, "7 4")):
-        x0, x1, y0, y1 = bounds(ids, pad)
-        svg.rect(*f(x0, y1), (x1 - x0) * f.s, (y1 - y0) * f.s, colour=colours[name], width=2.2, dash=dash)
-        svg.text(*f(x0 + 0.15, y1 - 0.45), name if name == "root" else f"box {name}", size=14,
-                 colour=colours[name], weight="bold")
+    def box(name, pad):
+        ids = objects(name)
+        return (min(prims[i][0] - prims[i][2] for i in ids) - pad, max(prims[i][0] + prims[i][2] for i in ids) + pad,
+                min(prims[i][1] - prims[i][2] for i in ids) - pad, max(prims[i][1] + prims[i][2] for i in ids) + pad)
+
+    pads = {"root": 0.95, "L": 0.55, "R": 0.55, "LA": 0.08, "LB": 0.08, "RA": 0.08, "RB": 0.08}
+    boxes = {n: box(n, p) for n, p in pads.items()}
+    o, d = (-0.3, 0.55), unit(1.0, 0.39)
+
+    def slab(b, t_max):
+        tx = sorted(((b[0] - o[0]) / d[0], (b[1] - o[0]) / d[0]))
+        ty = sorted(((b[2] - o[1]) / d[1], (b[3] - o[1]) / d[1]))
+        near, far = max(tx[0], ty[0], 0.0), min(tx[1], ty[1], t_max)
+        return near if near <= far else None
+
+    def sphere(i):
+        cx, cy, r = prims[i]
+        b = d[0] * (o[0] - cx) + d[1] * (o[1] - cy)
+        c = (o[0] - cx) ** 2 + (o[1] - cy) ** 2 - r * r
+        disc = b * b - c
+        return -b - math.sqrt(disc) if disc >= 0 else None
+
+    # The walk of the chapter's closest_hit: nearer child first, a node skipped when it starts beyond the best hit.
+    best, order, fate, asked = math.inf, [], {}, []
+    stack = [("root", slab(boxes["root"], math.inf))]
+    while stack:
+        name, entry = stack.pop()
+        if entry > best:
+            fate[name] = "skipped: starts beyond the hit"
+            continue
+        order.append(name)
+        kids = tree[name]
+        if isinstance(kids[0], int):
+            for i in kids:
+                t = sphere(i)
+                asked.append((i, t is not None and t < best))
+                if t is not None and t < best:
+                    best = t
+            continue
+        entries = [(slab(boxes[k], best), k) for k in kids]
+        for e, k in entries:
+            if e is None:
+                fate[k] = "missed"
+        hit = sorted((e, k) for e, k in entries if e is not None)
+        for e, k in reversed(hit):
+            stack.append((k, e))
+    number = {n: k + 1 for k, n in enumerate(order)}
+
+    def colour_of(name):
+        return HIT if name in number else GUIDE
+
+    for name, (x0, x1, y0, y1) in boxes.items():
+        opened = name in number
+        svg.rect(*f(x0, y1), (x1 - x0) * f.s, (y1 - y0) * f.s, colour=colour_of(name), width=2.4 if opened else 1.6,
+                 dash=None if opened else "6 4")
+        label = f"{number[name]} {name}" if opened else name
+        svg.text(*f(x0 + 0.1, y1 - 0.4), label, size=13, colour=colour_of(name), weight="bold")
     for i, (x, y, r) in enumerate(prims):
         c = f(x, y)
-        svg.circle(*c, r * f.s, SURFACE, 1.8, fill=FILLS[0] if i < 3 else FILLS[1])
+        was_asked = any(a == i for a, _ in asked)
+        svg.circle(*c, r * f.s, SURFACE, 1.8, fill=FILLS[0] if was_asked else "#eeeeee")
         svg.text(c[0], c[1] + 5, str(i), size=14, anchor="middle")
-    # the tree
-    nodes = {"root": (680, 110), "L": (590, 210), "R": (770, 210)}
-    leaf_y = 310
-    for child in ("L", "R"):
-        svg.line(*nodes["root"], *nodes[child], INK, 2)
-    for child, ids in groups.items():
-        for k, i in enumerate(ids):
-            x = nodes[child][0] + (k - 1) * 55
-            svg.line(*nodes[child], x, leaf_y, GUIDE, 1.5)
-            svg.circle(x, leaf_y, 17, SURFACE, 1.8, fill=FILLS[0] if i < 3 else FILLS[1])
-            svg.text(x, leaf_y + 5, str(i), size=14, anchor="middle")
-    for name, (x, y) in nodes.items():
-        svg.rect(x - 36, y - 17, 72, 34, colour=colours[name], width=2.2, fill="#ffffff")
-        svg.text(x, y + 5, name if name == "root" else f"box {name}", size=14, anchor="middle",
-                 colour=colours[name], weight="bold")
-    svg.text(20, 410, "Traversal tests a node's box first, and only on a hit its children: whole subtrees are "
-             "skipped.", size=13)
+    svg.dot(*f(*o))
+    svg.line(*f(*o), *f(o[0] + 11 * d[0], o[1] + 11 * d[1]), INK, 2.2, arrow=True)
+    hx, hy = o[0] + best * d[0], o[1] + best * d[1]
+    svg.circle(*f(hx, hy), 5, HIT, 2, fill=HIT)
+
+    # The tree, with each node's fate.
+    pos = {"root": (700, 90), "L": (590, 180), "R": (810, 180),
+           "LA": (535, 270), "LB": (645, 270), "RA": (755, 270), "RB": (865, 270)}
+    for parent in ("root", "L", "R"):
+        for k in tree[parent]:
+            svg.line(*pos[parent], *pos[k], colour_of(k), 2 if k in number else 1.4, dash=None if k in number else "6 4")
+    for leaf in ("LA", "LB", "RA", "RB"):
+        for j, i in enumerate(tree[leaf]):
+            x = pos[leaf][0] + (j - 0.5) * 44
+            svg.line(*pos[leaf], x, 345, GUIDE, 1.2)
+            was_asked = any(a == i for a, _ in asked)
+            svg.circle(x, 345, 15, SURFACE, 1.6, fill=FILLS[0] if was_asked else "#eeeeee")
+            svg.text(x, 350, str(i), size=13, anchor="middle")
+    for name, (x, y) in pos.items():
+        svg.rect(x - 34, y - 15, 68, 30, colour=colour_of(name), width=2.2, fill="#ffffff",
+                 dash=None if name in number else "6 4")
+        svg.text(x, y + 5, name, size=13, anchor="middle", colour=colour_of(name), weight="bold")
+        if name in number:
+            svg.circle(x - 34, y - 15, 11, None, fill=HIT)
+            svg.text(x - 34, y - 10, str(number[name]), size=13, anchor="middle", colour="#ffffff", weight="bold")
+    lines = [f"{number[n]}. {n}" + (": asks " + ", ".join(f"{i} ({'hit' if h else 'missed'})" for i, h in asked
+                                                        if i in tree[n]) if isinstance(tree[n][0], int) else "")
+             for n in order]
+    lines += [f"{n}: {why}" for n, why in fate.items()]
+    lines.append("below R: never tested")
+    for k, line in enumerate(lines):
+        svg.text(520, 385 + 16 * k, line, size=13, colour=HIT if line[0].isdigit() else GUIDE)
     return svg
 
 
