@@ -46,6 +46,18 @@ sphere<T> ground() {
     return {{T(0), T(-1e6), T(0)}, T(1e6)};
 }
 
+// What a wrong near root on a far unit sphere says about the formula. t at the
+// centre's distance means sqrt(disc) came out 0: b^2 - ac cancelled away the
+// radius, which is chapter 02's formula meeting trap 1.
+template <class T>
+std::string far_root_diagnosis(const std::optional<hit_record<T>>& hit, long double centre_distance) {
+    if (hit && static_cast<long double>(hit->t) == centre_distance)
+        return " (the distance to the centre itself: the discriminant came out 0, because b^2 - a c cancelled the "
+               "radius away. That is chapter 02's formula meeting trap 1; compute the discriminant from the foot of "
+               "the perpendicular, fix 1, step 1's quarter_discriminant)";
+    return "";
+}
+
 }  // namespace
 
 TEST_CASE_TEMPLATE("step6: a unit sphere 4100 radii away is hit through its middle and missed beside it", T, RT_SCALARS) {
@@ -58,7 +70,8 @@ TEST_CASE_TEMPLATE("step6: a unit sphere 4100 radii away is hit through its midd
                     "compute the discriminant from the foot of the perpendicular instead, subtracting the vectors "
                     "before squaring");
     CHECK_MESSAGE(ulps_from(hit, 4099.338562172233852L) <= 2,
-                  "the near root is t = 4099.338562172 (4100 - sqrt(1 - 0.75^2)); got " << describe(t_of(hit)));
+                  "the near root is t = 4099.338562172 (4100 - sqrt(1 - 0.75^2)); got " << describe(t_of(hit))
+                                                                                   << far_root_diagnosis(hit, 4100));
 
     auto beside = intersect_sphere_robust(s, ray<T>{{T(1.01), 0, 0}, {0, 0, -1}}, ahead<T>());
     CHECK_MESSAGE(!beside.has_value(),
@@ -75,7 +88,7 @@ TEST_CASE_TEMPLATE("step6: a unit sphere 1e5 radii away is still hit and missed 
                     "a ray 0.75 from the centre of a unit sphere 1e5 units away must hit: with the foot of the "
                     "perpendicular, foot = f - (f.d / d.d) d = (0.75, 0, 0) exactly, and r^2 - foot.foot > 0");
     CHECK_MESSAGE(ulps_from(hit, 99999.33856217223385L) <= 2,
-                  "the near root is t = 99999.338562172; got " << describe(t_of(hit)));
+                  "the near root is t = 99999.338562172; got " << describe(t_of(hit)) << far_root_diagnosis(hit, 1e5L));
     auto beside = intersect_sphere_robust(s, ray<T>{{T(1.01), 0, 0}, {0, 0, -1}}, ahead<T>());
     CHECK_MESSAGE(!beside.has_value(), "a ray 1.01 radii from the centre misses, however far away the sphere is; got "
                                            << describe(t_of(beside)));
