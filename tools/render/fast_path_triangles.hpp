@@ -128,9 +128,10 @@ template <class T, bool CommonOrigin>
         traverse_wide<false>(s.triangle_tree, origin, direction, bt, [&](std::uint32_t b, std::uint32_t n) {
             for (size_t g = b; g < size_t(b) + n; g += leaf_lanes) {
                 const triangle_group<T> group(s, g, size_t(b) + n, ox, oy, oz, dx, dy, dz, best.d_max[k], tmin);
-                for (int i = 0; i < leaf_lanes && g + size_t(i) < size_t(b) + n; ++i) {  // at a tie, the lowest number
+                for (int i = 0; i < leaf_lanes && g + size_t(i) < size_t(b) + n; ++i) {
+                    if (!(group.t[i] <= bt)) continue;  // the usual case: no number needed
                     const I id = I(s.original[size_t(base) + g + size_t(i)]);
-                    if (group.t[i] < bt || (group.t[i] == bt && id < bo)) bt = group.t[i], bo = id;
+                    if (group.t[i] < bt || id < bo) bt = group.t[i], bo = id;  // at a tie, the lowest number
                 }
             }
             return false;
