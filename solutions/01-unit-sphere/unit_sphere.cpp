@@ -22,9 +22,9 @@ std::optional<T> intersect_unit_sphere(const ray<T>& r, const interval<T>& range
 
     const T root = std::sqrt(discriminant);
     const T near_t = (-half_b - root) / a;  // a > 0, so this is the smaller root
-    if (range.contains(near_t)) return near_t;
+    if (range.surrounds(near_t)) return near_t;
     const T far_t = (-half_b + root) / a;   // e.g. the origin is inside the sphere
-    if (range.contains(far_t)) return far_t;
+    if (range.surrounds(far_t)) return far_t;
     return std::nullopt;
 }
 

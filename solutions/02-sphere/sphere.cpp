@@ -27,9 +27,9 @@ std::optional<hit_record<T>> intersect_sphere(const sphere<T>& s, const ray<T>& 
     // Nearest root first; a > 0, so the minus sign gives the smaller t.
     const T root = std::sqrt(discriminant);
     T t = (-half_b - root) / a;
-    if (!range.contains(t)) {
+    if (!range.surrounds(t)) {
         t = (-half_b + root) / a;  // e.g. the origin is inside the sphere
-        if (!range.contains(t)) return std::nullopt;
+        if (!range.surrounds(t)) return std::nullopt;
     }
 
     hit_record<T> hit;

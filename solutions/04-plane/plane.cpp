@@ -53,9 +53,9 @@ std::optional<hit_record<T>> intersect_plane(const plane<T>& p, const ray<T>& r,
     if (!(std::fabs(facing) > T(0))) return std::nullopt;
 
     const T t = k == 0 ? dot(p.point - r.origin, n) / facing : std::ldexp(dot(p.point - r.origin, n) / facing, k);
-    // A tiny d.n can still push t to infinity: contains() rejects infinity
+    // A tiny d.n can still push t to infinity: surrounds() rejects infinity
     // and NaN, but say so explicitly for the reader.
-    if (!std::isfinite(t) || !range.contains(t)) return std::nullopt;
+    if (!std::isfinite(t) || !range.surrounds(t)) return std::nullopt;
 
     hit_record<T> hit;
     hit.t = t;

@@ -78,7 +78,7 @@ std::optional<hit_record<T>> intersect_triangle(const triangle<T>& tri, const ra
     if (!(std::fabs(facing) > T(0))) return std::nullopt;
 
     const T t = k == 0 ? dot(tri.a - r.origin, n) / facing : std::ldexp(dot(tri.a - r.origin, n) / facing, -k);
-    if (!std::isfinite(t) || !range.contains(t)) return std::nullopt;
+    if (!std::isfinite(t) || !range.surrounds(t)) return std::nullopt;
 
     // Step 2: is the plane hit inside all three edge half-planes? Points on
     // an edge (a coordinate of exactly 0) count as inside, so two triangles

@@ -171,9 +171,9 @@ std::optional<hit_record<T>> intersect_sphere_robust(const sphere<T>& s, const r
     const root_pair<T> roots = stable_roots<T>(eq.a.value(), eq.half_b.value(), c, eq.quarter_disc.value());
 
     T t = unscaled_root<T>(roots.near, p.ed - p.ef);
-    if (!range.contains(t)) {
+    if (!range.surrounds(t)) {
         t = unscaled_root<T>(roots.far, p.ed - p.ef);  // e.g. the origin is inside the sphere
-        if (!range.contains(t)) return std::nullopt;
+        if (!range.surrounds(t)) return std::nullopt;
     }
 
     hit_record<T> hit;

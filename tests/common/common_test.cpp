@@ -24,13 +24,13 @@ using namespace rt;
 
 TEST_CASE_TEMPLATE("interval: the rule is tmin < t < tmax and NaN never passes", T, RT_SCALARS) {
     interval<T> range{T(1), T(2)};
-    CHECK(range.contains(T(1.5)));
-    CHECK_FALSE(range.contains(T(1)));
-    CHECK_FALSE(range.contains(T(2)));
-    CHECK_FALSE(range.contains(std::numeric_limits<T>::quiet_NaN()));
-    CHECK_FALSE(interval<T>{}.contains(infinity<T>));
-    CHECK(interval<T>::in_front_of_image_plane().contains(T(1.0001)));
-    CHECK_FALSE(interval<T>::in_front_of_image_plane().contains(T(1)));
+    CHECK(range.surrounds(T(1.5)));
+    CHECK_FALSE(range.surrounds(T(1)));
+    CHECK_FALSE(range.surrounds(T(2)));
+    CHECK_FALSE(range.surrounds(std::numeric_limits<T>::quiet_NaN()));
+    CHECK_FALSE(interval<T>{}.surrounds(infinity<T>));
+    CHECK(interval<T>::in_front_of_image_plane().surrounds(T(1.0001)));
+    CHECK_FALSE(interval<T>::in_front_of_image_plane().surrounds(T(1)));
 }
 
 TEST_CASE_TEMPLATE("ray: at(t) walks along the direction", T, RT_SCALARS) {

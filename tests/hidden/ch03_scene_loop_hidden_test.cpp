@@ -26,7 +26,7 @@ namespace {
 
 template <class T>
 T never() {
-    return std::numeric_limits<T>::quiet_NaN();  // a wall the ray never meets: contains(NaN) is false
+    return std::numeric_limits<T>::quiet_NaN();  // a wall the ray never meets: surrounds(NaN) is false
 }
 
 // Object i is met at walls[i]; its record's normal is (tags[i], 0, 1). A
@@ -41,7 +41,7 @@ rt::test::served_objects<T> walls_at(const std::vector<T>& walls, const std::vec
     served.count = int(walls.size());
     served.test = [walls, tags](int i, const ray<T>& r, const interval<T>& range) -> std::optional<hit_record<T>> {
         const T t = walls[size_t(i)];
-        if (!range.contains(t)) return std::nullopt;
+        if (!range.surrounds(t)) return std::nullopt;
         hit_record<T> hit;
         hit.t = t;
         hit.point = r.at(t);
@@ -66,7 +66,7 @@ rt::test::served_objects<T> walls_checking_calls(const std::vector<T>& walls, in
     served.check_calls = true;
     for (size_t i = 0; i < walls.size(); ++i) {
         served.expected.push_back({int(i), range});
-        if (range.contains(walls[i])) range.max = walls[i];
+        if (range.surrounds(walls[i])) range.max = walls[i];
     }
     return served;
 }
@@ -86,7 +86,7 @@ template <class T>
 int nearest_wall(const std::vector<T>& walls, const interval<T>& range) {
     int best = -1;
     for (size_t i = 0; i < walls.size(); ++i)
-        if (range.contains(walls[i]) && (best < 0 || walls[i] < walls[size_t(best)])) best = int(i);
+        if (range.surrounds(walls[i]) && (best < 0 || walls[i] < walls[size_t(best)])) best = int(i);
     return best;
 }
 

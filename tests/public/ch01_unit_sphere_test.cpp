@@ -148,7 +148,7 @@ TEST_CASE_TEMPLATE("a hit exactly at tmin does not count (the range is open)", T
                                    "near root (t = 0) is out of range: then the far root is the answer");
     CHECK_MESSAGE(close(*t, T(2)),
                   "the roots are t = 0 and t = 2, and the range is (0, inf), open at both ends: t = 0 is not "
-                  "inside it (test tmin < t < tmax strictly, with range.contains(t), never t >= tmin), so the hit "
+                  "inside it (test tmin < t < tmax strictly, with range.surrounds(t), never t >= tmin), so the hit "
                   "is t = 2. Got "
                       << describe(t) << diagnosis(t, {{0, "t = tmin is on the boundary: the range is open."}}));
 }

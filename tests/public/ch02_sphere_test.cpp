@@ -228,6 +228,6 @@ TEST_CASE_TEMPLATE("a root exactly at tmin does not count (the range is open)", 
                                                    : diagnosis<T>()));
     CHECK_MESSAGE(close(hit->t, T(4)),
                   "the roots are t = 0 and t = 4, and the range (0, inf) is open: t = 0 is not inside it (test "
-                  "tmin < t < tmax strictly, with range.contains(t), never t >= tmin), so the hit is t = 4. Got "
+                  "tmin < t < tmax strictly, with range.surrounds(t), never t >= tmin), so the hit is t = 4. Got "
                       << describe_hit(hit) << diagnosis<T>());
 }

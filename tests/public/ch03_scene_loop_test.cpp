@@ -37,7 +37,7 @@ rt::test::served_objects<T> walls_at(const std::vector<T>& walls) {
     served.count = int(walls.size());
     served.test = [walls](int i, const ray<T>& r, const interval<T>& range) -> std::optional<hit_record<T>> {
         const T t = walls[size_t(i)];
-        if (!range.contains(t)) return std::nullopt;
+        if (!range.surrounds(t)) return std::nullopt;
         hit_record<T> hit;
         hit.t = t;
         hit.point = r.at(t);
@@ -54,7 +54,7 @@ std::vector<rt::test::expected_call<T>> loop_calls(const std::vector<T>& walls, 
     std::vector<rt::test::expected_call<T>> calls;
     for (size_t i = 0; i < walls.size(); ++i) {
         calls.push_back({int(i), range});
-        if (range.contains(walls[i])) range.max = walls[i];
+        if (range.surrounds(walls[i])) range.max = walls[i];
     }
     return calls;
 }
@@ -107,7 +107,7 @@ std::string diagnosis(const std::optional<hit_record<T>>& hit, const std::vector
     }
     std::vector<size_t> in_range;
     for (size_t i = 0; i < walls.size(); ++i)
-        if (range.contains(walls[i])) in_range.push_back(i);
+        if (range.surrounds(walls[i])) in_range.push_back(i);
     if (in_range.empty()) return "";
     size_t nearest = in_range.front();
     for (size_t i : in_range)

@@ -297,7 +297,7 @@ std::optional<T> intersect_unit_sphere(const ray<T>& r, const interval<T>& range
         const T s = std::sqrt(d);
         const T candidates[2] = {(-qb - s) / (T(2) * qa), (-qb + s) / (T(2) * qa)};
         for (const T t : candidates)
-            if (range.contains(t)) return t;
+            if (range.surrounds(t)) return t;
     }
     return std::nullopt;
 }

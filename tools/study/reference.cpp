@@ -87,7 +87,7 @@ void cross3(big* out, big* x, big* y, mpfr_prec_t bits) {
 
 template <class T>
 bool inside_range(const big& t, const interval<T>& range) {
-    // NaN bounds make every comparison false, as in interval::contains.
+    // NaN bounds make every comparison false, as in interval::surrounds.
     if (std::isnan(range.min) || std::isnan(range.max)) return false;
     return mpfr_cmp_d(t.get(), static_cast<double>(range.min)) > 0 &&
            mpfr_cmp_d(t.get(), static_cast<double>(range.max)) < 0;

@@ -63,7 +63,7 @@ T plane_t(const ray<T>& ray_, const plane<T>& p) {
 template <class T>
 std::optional<plane_hit<T>> plane_direct(const ray<T>& ray_, const plane<T>& p, const interval<T>& range) {
     T t = detail::plane_t(ray_, p);
-    if (!range.contains(t)) return std::nullopt;
+    if (!range.surrounds(t)) return std::nullopt;
     return plane_hit<T>{t, ray_.at(t)};
 }
 
@@ -81,7 +81,7 @@ std::optional<plane_hit<T>> plane_direct(const ray<T>& ray_, const plane<T>& p, 
 template <class T>
 std::optional<plane_hit<T>> plane_snapped(const ray<T>& ray_, const plane<T>& p, const interval<T>& range) {
     T t = detail::plane_t(ray_, p);
-    if (!range.contains(t)) return std::nullopt;
+    if (!range.surrounds(t)) return std::nullopt;
     vec3<T> x = ray_.at(t);
     if (!is_finite(x)) return std::nullopt;
     const vec3<T> n = detail::comfortable_normal(p);

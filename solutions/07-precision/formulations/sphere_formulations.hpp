@@ -41,13 +41,13 @@
 
 namespace rt::formulations {
 
-// The nearer root inside the range. A NaN root fails contains() and is
+// The nearer root inside the range. A NaN root fails surrounds() and is
 // dropped, so no formulation can hand a NaN on as a hit.
 template <class T>
 std::optional<T> nearest_in_range(T t0, T t1, const interval<T>& range) {
     if (t1 < t0) std::swap(t0, t1);
-    if (range.contains(t0)) return t0;
-    if (range.contains(t1)) return t1;
+    if (range.surrounds(t0)) return t0;
+    if (range.surrounds(t1)) return t1;
     return std::nullopt;
 }
 
@@ -231,7 +231,7 @@ inline std::optional<float> sphere_float_in_double_word(const ray<float>& ray_, 
     auto t = sphere_compensated<double>(r, sd, interval<double>{double(range.min), double(range.max)});
     if (!t) return std::nullopt;
     float tf = to_float(*t);
-    if (range.contains(tf)) return tf;
+    if (range.surrounds(tf)) return tf;
     return std::nullopt;
 }
 }  // namespace detail
@@ -321,9 +321,9 @@ inline std::optional<float> near_root_first(double a, double h, double c, double
     const double q = -(h + std::copysign(std::sqrt(disc), h));
     const bool c_first = h < 0;
     const float near = to_float(c_first ? c / q : q / a);
-    if (range.contains(near)) return near;
+    if (range.surrounds(near)) return near;
     const float far = to_float(c_first ? q / a : c / q);
-    if (range.contains(far)) return far;
+    if (range.surrounds(far)) return far;
     return std::nullopt;
 }
 
@@ -348,10 +348,10 @@ inline std::optional<float> root_ahead(double a, double h, double c, double disc
     const double q = -(h + std::copysign(std::sqrt(disc), h));
     const bool take_far = negative_h && c <= 0;
     const float t = to_float(take_far ? q / a : c / q);
-    if (range.contains(t)) return t;
+    if (range.surrounds(t)) return t;
     if (negative_h && c > 0) {
         const float far = to_float(q / a);
-        if (range.contains(far)) return far;
+        if (range.surrounds(far)) return far;
     }
     return std::nullopt;
 }

@@ -42,7 +42,7 @@ std::optional<T> with_scaled_direction(const ray<T>& ray_, const triangle<T>& tr
     std::optional<T> t = F(scaled, tri, interval<T>{-infinity<T>, infinity<T>});
     if (!t) return std::nullopt;
     T back = std::ldexp(*t, k);
-    if (!range.contains(back)) return std::nullopt;
+    if (!range.surrounds(back)) return std::nullopt;
     return back;
 }
 }  // namespace detail
@@ -57,7 +57,7 @@ std::optional<T> triangle_half_planes(const ray<T>& ray_, const triangle<T>& tri
         return detail::with_scaled_direction<&triangle_half_planes<T>>(ray_, tri, range, k);
     vec3<T> n = cross(tri.b - tri.a, tri.c - tri.a);
     T t = dot(tri.a - ray_.origin, n) / dot(ray_.direction, n);
-    if (!range.contains(t)) return std::nullopt;
+    if (!range.surrounds(t)) return std::nullopt;
     vec3<T> p = ray_.at(t);
     bool inside = dot(cross(tri.b - tri.a, p - tri.a), n) >= 0 && dot(cross(tri.c - tri.b, p - tri.b), n) >= 0 &&
                   dot(cross(tri.a - tri.c, p - tri.c), n) >= 0;
@@ -87,7 +87,7 @@ std::optional<T> triangle_moller_trumbore(const ray<T>& ray_, const triangle<T>&
     T v = dot(ray_.direction, qv) * inv;
     if (!(v >= 0 && u + v <= 1)) return std::nullopt;
     T t = dot(e2, qv) * inv;
-    if (!range.contains(t) || flat_exactly(ray_.direction, tri.a, tri.b, tri.c)) return std::nullopt;
+    if (!range.surrounds(t) || flat_exactly(ray_.direction, tri.a, tri.b, tri.c)) return std::nullopt;
     return t;
 }
 
@@ -149,7 +149,7 @@ std::optional<T> triangle_watertight(const ray<T>& ray_, const triangle<T>& tri,
     if (det == 0) return std::nullopt;  // the ray lies in the triangle's plane
     T num = u * (sz * component(A, kz)) + v * (sz * component(B, kz)) + w * (sz * component(C, kz));
     T t = num / det;
-    if (!range.contains(t) || flat_exactly(d, tri.a, tri.b, tri.c)) return std::nullopt;
+    if (!range.surrounds(t) || flat_exactly(d, tri.a, tri.b, tri.c)) return std::nullopt;
     return t;
 }
 
