@@ -9,8 +9,15 @@
 // passes no test for them, and then its scene must have none of them
 // (program.hpp's chapter_program::draws removes them, and says so).
 //
+// Two questions, two names:
+//   shape_hit(i, r, range)        the shape's own answer, an optional hit whose
+//                                 `object` field is left for the loop to set
+//                                 (chapter 03's object_intersector contract);
+//   object_hit(i, r, range, hit)  true on a hit, and then `hit` holds it with
+//                                 hit.object = i (chapter 08's leaf contract).
+//
 //   const ch03::object_intersector<T> intersect =
-//       object_dispatch(world, ch02::intersect_sphere<T>, ch04::intersect_plane<T>);
+//       object_dispatch(world, ch02::intersect_sphere<T>, ch04::intersect_plane<T>).intersector();
 #pragma once
 
 #include "hit_record.hpp"
@@ -43,7 +50,7 @@ public:
     int count() const { return scene_->object_count(); }
 
     // The shape's own answer, unchanged (its `object` field is the loop's to set).
-    std::optional<hit_record<T>> operator()(int object, const ray<T>& r, const interval<T>& range) const {
+    std::optional<hit_record<T>> shape_hit(int object, const ray<T>& r, const interval<T>& range) const {
         const object_ref o = locate(*scene_, object);
         if (o.kind == shape_kind::sphere) return sphere_(scene_->spheres[o.index], r, range);
         if constexpr (draws<PlaneTest>())
@@ -55,12 +62,21 @@ public:
 
     // The same question in the form a tree's leaves ask it (chapter 08): true
     // on a hit inside range, and then `hit` holds it with hit.object = object.
-    bool operator()(int object, const ray<T>& r, interval<T> range, hit_record<T>& hit) const {
-        const std::optional<hit_record<T>> h = (*this)(object, r, range);
+    bool object_hit(int object, const ray<T>& r, const interval<T>& range, hit_record<T>& hit) const {
+        const std::optional<hit_record<T>> h = shape_hit(object, r, range);
         if (!h) return false;
         hit = *h;
         hit.object = object;
         return true;
+    }
+
+    // shape_hit as a function object, for chapter 03's object_intersector. It
+    // holds a copy of this dispatch (a pointer to the scene and the tests), so
+    // it may outlive the dispatch, not the scene.
+    auto intersector() const {
+        return [dispatch = *this](int object, const ray<T>& r, const interval<T>& range) {
+            return dispatch.shape_hit(object, r, range);
+        };
     }
 
 private:

@@ -24,7 +24,7 @@ template <class T>
 image render_scene(const program_options& opt) {
     const scene<T> world = convert_scene<T>(opt.scene.world);
     const scene_camera<T> camera(opt.scene.camera, opt.width, opt.height);
-    const ch03::object_intersector<T> intersect = object_dispatch(world, ch02::intersect_sphere<T>);
+    const ch03::object_intersector<T> intersect = object_dispatch(world, ch02::intersect_sphere<T>).intersector();
     return render(opt.width, opt.height, [&](int col, int row) {
         ray<T> r = camera.primary_ray(col, row);
         // t > 1: only what lies beyond the image plane is visible (chapter 01);

@@ -35,7 +35,7 @@ image render_scene(const program_options& opt) {
     const scene<T> world = convert_scene<T>(opt.scene.world);
     const scene_camera<T> camera(opt.scene.camera, opt.width, opt.height);
     const ch03::object_intersector<T> intersect =
-        object_dispatch(world, ch02::intersect_sphere<T>, ch04::intersect_plane<T>, ch05::intersect_triangle<T>);
+        object_dispatch(world, ch02::intersect_sphere<T>, ch04::intersect_plane<T>, ch05::intersect_triangle<T>).intersector();
     const vec3<T> to_light = normalize(vec3<T>(T(-0.5), T(1.0), T(0.7)));
 
     return render(opt.width, opt.height, [&](int col, int row) {

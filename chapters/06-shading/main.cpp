@@ -30,7 +30,7 @@ image render_scene(const program_options& opt, long& rays) {
     const scene<T> world = convert_scene<T>(opt.scene.world);
     const scene_camera<T> camera(opt.scene.camera, opt.width, opt.height);
     const ch03::object_intersector<T> intersect =
-        object_dispatch(world, ch02::intersect_sphere<T>, ch04::intersect_plane<T>, ch05::intersect_triangle<T>);
+        object_dispatch(world, ch02::intersect_sphere<T>, ch04::intersect_plane<T>, ch05::intersect_triangle<T>).intersector();
 
     std::atomic<long> shadow_rays{0};
     const ch06::occlusion_test<T> occluded = [&](const ray<T>& r, const interval<T>& range) {

@@ -9,7 +9,7 @@
 //
 // The tree knows nothing about spheres or triangles: it is built from one box
 // per object and, to test an object, calls the scene's own dispatch
-// intersect(i, r, range, hit) (common/object_dispatch.hpp has that form).
+// intersect(i, r, range, hit) (rt::object_dispatch::object_hit in common/object_dispatch.hpp has that form).
 // Objects are numbered 0 .. N-1 as in chapter 03.
 #pragma once
 
@@ -30,7 +30,7 @@ namespace rt::ch08 {
 // range.min < t < range.max, and then `hit` holds that hit, the first one in
 // the range (the object's smallest t there), with hit.object = i. The t it
 // reports for a hit must not depend on range.max (true of every chapter's
-// shape test). rt::object_dispatch (common/object_dispatch.hpp) is one.
+// shape test). rt::object_dispatch::object_hit (common/object_dispatch.hpp) answers it.
 template <class T>
 using leaf_intersector = std::function<bool(int object, const ray<T>& r, const interval<T>& range, hit_record<T>& hit)>;
 

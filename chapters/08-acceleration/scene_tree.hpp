@@ -56,12 +56,12 @@ scene_tree<T> build_scene_tree(const scene<T>& world) {
 }
 
 // The tree's leaf test: the tree's object k is the scene's bounded[k].
-// `dispatch` answers dispatch(i, r, range, hit) for scene object i
-// (rt::object_dispatch does); it must outlive the returned function.
+// `dispatch` answers dispatch.object_hit(i, r, range, hit) for scene object
+// i (rt::object_dispatch does); it must outlive the returned function.
 template <class T, class Dispatch>
 leaf_intersector<T> leaf_test(const scene_tree<T>& a, const Dispatch& dispatch) {
     return [&a, &dispatch](int k, const ray<T>& r, const interval<T>& range, hit_record<T>& hit) {
-        return dispatch(a.bounded[size_t(k)], r, range, hit);
+        return dispatch.object_hit(a.bounded[size_t(k)], r, range, hit);
     };
 }
 
@@ -76,7 +76,7 @@ std::optional<hit_record<T>> scene_closest_hit(const scene_tree<T>& a, const lea
         // Up to and including the best t: a plane hit at that very t wins by a lower number.
         const T upper = best ? std::nextafter(best->t, infinity<T>) : range.max;
         hit_record<T> hit;
-        if (dispatch(p, r, interval<T>{range.min, upper}, hit) && (!best || hit.t < best->t || p < best->object))
+        if (dispatch.object_hit(p, r, interval<T>{range.min, upper}, hit) && (!best || hit.t < best->t || p < best->object))
             best = hit;
     }
     return best;
@@ -88,7 +88,7 @@ bool scene_any_hit(const scene_tree<T>& a, const leaf_intersector<T>& leaf, cons
                    const interval<T>& range) {
     hit_record<T> hit;
     for (int p : a.planes)
-        if (dispatch(p, r, range, hit)) return true;
+        if (dispatch.object_hit(p, r, range, hit)) return true;
     return any_hit(a.tree, leaf, r, range);
 }
 

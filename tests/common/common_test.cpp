@@ -189,17 +189,17 @@ TEST_CASE("object_dispatch: spheres then planes then triangles each to its own t
     const ray<double> r{{0, 0, 5}, {0, 0, -1}};
     const interval<double> range;
     CHECK(dispatch.count() == 4);
-    CHECK(dispatch(0, r, range)->t == 10);
-    CHECK(dispatch(1, r, range)->t == 11);
-    CHECK(dispatch(2, r, range)->t == 20);
-    CHECK(dispatch(3, r, range)->t == 30);
-    CHECK(dispatch(3, r, range)->object == -1);  // the loop sets it, not the dispatch
+    CHECK(dispatch.shape_hit(0, r, range)->t == 10);
+    CHECK(dispatch.shape_hit(1, r, range)->t == 11);
+    CHECK(dispatch.shape_hit(2, r, range)->t == 20);
+    CHECK(dispatch.shape_hit(3, r, range)->t == 30);
+    CHECK(dispatch.shape_hit(3, r, range)->object == -1);  // the loop sets it, not the dispatch
     hit_record<double> h;
-    CHECK(dispatch(2, r, range, h));  // chapter 08's form: the object is set
+    CHECK(dispatch.object_hit(2, r, range, h));  // chapter 08's form: the object is set
     CHECK(h.t == 20);
     CHECK(h.object == 2);
-    CHECK_THROWS_AS(dispatch(4, r, range), std::out_of_range);
-    CHECK_THROWS_AS(dispatch(-1, r, range), std::out_of_range);
+    CHECK_THROWS_AS(dispatch.shape_hit(4, r, range), std::out_of_range);
+    CHECK_THROWS_AS(dispatch.shape_hit(-1, r, range), std::out_of_range);
 }
 
 TEST_CASE("object_dispatch: a kind without a test must be absent from the scene") {
@@ -211,7 +211,7 @@ TEST_CASE("object_dispatch: a kind without a test must be absent from the scene"
     spheres_only.triangles.clear();
     const object_dispatch dispatch(spheres_only, sphere_test);
     CHECK(dispatch.count() == 2);
-    CHECK(dispatch(1, ray<double>{}, interval<double>{})->t == 1);
+    CHECK(dispatch.shape_hit(1, ray<double>{}, interval<double>{})->t == 1);
 }
 
 TEST_CASE("material_at: the checker pattern alternates in unit squares of x and z") {

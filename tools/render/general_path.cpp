@@ -29,7 +29,7 @@ image render_typed(const scene_description& d, bool use_tree, int width, int hei
 
     const auto dispatch =
         object_dispatch(world, ch02::intersect_sphere<T>, ch04::intersect_plane<T>, ch05::intersect_triangle<T>);
-    const ch03::object_intersector<T> intersect = dispatch;
+    const ch03::object_intersector<T> intersect = dispatch.intersector();
     // Chapter 08's tree, when the plan says it pays (the same rule as the
     // specialised path's); an empty tree otherwise, never asked.
     const ch08::scene_tree<T> tree = use_tree ? ch08::build_scene_tree(world) : ch08::scene_tree<T>{};

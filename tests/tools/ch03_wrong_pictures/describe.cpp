@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
         const scene<double>& world = d.world;
         const scene_camera<double> camera(d.camera);
         const object_dispatch intersect(world, ch02::intersect_sphere<double>);
-        const ch03::object_intersector<double> loop_intersect = intersect;
+        const ch03::object_intersector<double> loop_intersect = intersect.intersector();
         std::map<std::pair<std::string, std::string>, long> over;
         std::map<int, long> bad_index;
         long differing = 0;
@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
                 int nearest = -1;
                 double nearest_t = 0;
                 for (int i = 0; i < world.object_count(); ++i)
-                    if (auto h = intersect(i, r, range); h && (nearest < 0 || h->t < nearest_t)) {
+                    if (auto h = intersect.shape_hit(i, r, range); h && (nearest < 0 || h->t < nearest_t)) {
                         nearest = i;
                         nearest_t = h->t;
                     }
