@@ -77,15 +77,19 @@ std::vector<count_map> tree_heatmap(const scene<T>& world, const scene_tree<T>& 
     const tree_links links(a.tree);
     const leaf_intersector<T> counted_leaf = [&](int k, const ray<T>& r, const interval<T>& range, hit_record<T>& hit) {
         this_pixel.asked(links, k);
-        return dispatch(a.bounded[size_t(k)], r, range, hit);
+        return dispatch.object_hit(a.bounded[size_t(k)], r, range, hit);
     };
-    auto counted_dispatch = [&](int i, const ray<T>& r, const interval<T>& range, hit_record<T>& hit) {
-        ++this_pixel.objects;  // a plane
-        return dispatch(i, r, range, hit);
+    struct counted_planes {  // scene_closest_hit asks the planes through object_hit
+        const Dispatch& dispatch;
+        bool object_hit(int i, const ray<T>& r, const interval<T>& range, hit_record<T>& hit) const {
+            ++this_pixel.objects;  // a plane
+            return dispatch.object_hit(i, r, range, hit);
+        }
     };
+    const counted_planes counted_dispatch{dispatch};
     const ch03::object_intersector<T> counted_brute = [&](int i, const ray<T>& r, const interval<T>& range) {
         ++this_pixel.objects;
-        return dispatch(i, r, range);
+        return dispatch.shape_hit(i, r, range);
     };
 
     std::vector<count_map> maps{{"tree: boxes opened", width, height},
