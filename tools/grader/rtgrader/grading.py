@@ -192,6 +192,7 @@ class Grader:
         self.chapter_ids = options.chapters or [cid for cid, ch in chapters.items() if ch.get("built")]
         self.names = manifest.test_names(chapters, self.chapter_ids, options.public_only)
         self._per = threading.local()   # this grading's folder and deadline (a batch grades in threads)
+        self._hidden_system_lock = threading.Lock()   # see _hidden_system
 
     # --- one submission ---------------------------------------------------------------
     def grade(self, submission, out_dir):
@@ -577,8 +578,12 @@ class Grader:
         if self.iso.mode != isolation.NAMESPACES:
             return None
         folder = os.path.join(self._per.work, "hidden-system")
-        if not os.path.isdir(folder):
-            make_dir(folder, None, 0o755)
+        # Two lanes start their chapters' hidden phases at once: under the lock, the second waits
+        # for the first's copy instead of finding a half-made folder (its runner then failed to
+        # start, one grading in eight), and adds whatever its own runner needs that is not there yet.
+        with self._hidden_system_lock:
+            if not os.path.isdir(folder):
+                make_dir(folder, None, 0o755)
             isolation.private_system(folder, [runner] + ([self.iso.setpriv] if self.iso.setpriv else []))
         return folder
 
