@@ -49,8 +49,8 @@ std::optional<hit_record<T>> intersect_sphere_robust(const sphere<T>& s, const r
     RT_NOT_IMPLEMENTED("chapter 07", "intersect_sphere_robust");
 }
 
-// Compile the exercise for every precision the course uses (ch07-worked uses
-// your long double version). Leave these lines as they are.
+// Compile the exercise for every precision the course uses (--error uses
+// your long double version at some sizes). Leave these lines as they are.
 #define RT_CH07_INSTANTIATE(T)                                                                                   \
     template quadratic<T> quarter_discriminant(const scaled_problem<T>&);                                       \
     template root_pair<T> stable_roots<T>(wide<T>, wide<T>, wide<T>, wide<T>);                                  \

@@ -150,8 +150,8 @@ T unscaled_root(wide<T> t_scaled, int exponent);
 //     in double) and non-zero subnormal directions are answered like any
 //     other: a direction is zero only when all its components are 0.
 //
-// T is float, double or long double (ch07-worked prints the exact roots with
-// your long double version): the same code is compiled for all three.
+// T is float, double or long double (--error measures with
+// your long double version at some sizes): the same code is compiled for all three.
 template <class T>
 std::optional<hit_record<T>> intersect_sphere_robust(const sphere<T>& s, const ray<T>& r, const interval<T>& range);
 

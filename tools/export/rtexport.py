@@ -42,7 +42,8 @@ KIT_DENY = ["*/__pycache__/*", "*.pyc", "*/.DS_Store",
             "/tools/grader/README.md",              # the instructor's manual: the kit's README says how to preview
             "/tools/grader/screenshots/*",          # its pictures
             "/tools/grader/results/*",              # where and when the instructor's figures were measured
-            "/tests/support/rpc/README.md"]         # the judge/runner layer's page for contributors
+            "/tests/support/rpc/README.md",
+            "/chapters/07-precision/worked_values.cpp"]  # evaluates the stable root pair: step 2's answer         # the judge/runner layer's page for contributors
 PRIVATE = ["solutions", "tests/hidden", "tests/fixtures"]
 
 # What may ship, by kind: every file of a written kit must match one of these
@@ -58,9 +59,8 @@ KIT_SHIP = {
                     "tests/common/CMakeLists.txt", "tests/scenes/CMakeLists.txt", "tools/CMakeLists.txt"],
     "READMEs": ["README.md", CHAPTER + "README.md", "scenes/README.md"],
     "chapter headers": [CHAPTER + "*.hpp"],
-    # A measurement that runs the student's chapter 02 code (README, "Shadow acne"), and chapter 07's
-    # worked numbers, whose exact roots come from the student's own code (README, "The worked numbers").
-    "programs": ["chapters/06-shading/acne_study.cpp", "chapters/07-precision/worked_values.cpp"],
+    # A measurement that runs the student's own shadow_ray_origin (chapter 06's README, "Shadow acne").
+    "programs": ["chapters/06-shading/acne_study.cpp"],
     "pictures": [CHAPTER + "**.png", CHAPTER + "**.svg", "tests/common/data/*.png"],
     # Numbers, not code: the reference solution's t for every ray of chapter
     # 07's picture, written by ch07-reference-hits and kept equal to the
