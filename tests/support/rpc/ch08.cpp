@@ -7,16 +7,9 @@
 #include "served_by_judge.hpp"
 #include "table_builds.hpp"
 
+#include "ch08_fields.hpp"
+
 namespace rt::ch08 {
-// The chapter's structs travel like the course's others (exact_bits.hpp).
-template <class T, class F>
-void fields(aabb<T>& x, F&& f) {
-    f(x.lo, x.hi);
-}
-template <class T, class F>
-void fields(bvh_node<T>& x, F&& f) {
-    f(x.box, x.first, x.count);
-}
 template <class T, class F>
 void fields(bvh<T>& x, F&& f) {
     f(x.nodes, x.order);

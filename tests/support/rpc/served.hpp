@@ -43,6 +43,7 @@ enum class call_fault : int {
     no_such_object = 2,   // an index outside 0 .. count-1
     other_ray = 3,        // not the ray the exercise was given
     unexpected_call = 4,  // not the call the test expects next (object or range)
+    other_object_ray = 5, // chapter 10: not the object-space ray of an instance placing that model
 };
 
 // One call a test expects, in order: object i about this range.
@@ -81,6 +82,9 @@ std::string describe_fault(const fault_note<T>& note, bool values) {
                 s << "its calls were not the ones expected (each object once, in order 0, 1, 2, ..., with the "
                      "caller's tmin and the closest t so far as tmax)";
                 break;
+            case call_fault::other_object_ray:
+                s << "a model was asked about a ray that is not transform_ray(to_object, r) of an instance placing it";
+                break;
         }
         return s.str();
     }
@@ -95,6 +99,10 @@ std::string describe_fault(const fault_note<T>& note, bool values) {
             else s << ", but the objects are 0 .. " << note.count - 1;
             break;
         case call_fault::other_ray: s << " for another ray than the one the exercise was given: pass it on unchanged"; break;
+        case call_fault::other_object_ray:
+            s << " about a ray that is not transform_ray(inst.place.to_object, r) of any instance placing model "
+              << note.object << ": take the world ray into the model's space with your transform_ray, bit for bit";
+            break;
         case call_fault::unexpected_call:
             s << " with (tmin, tmax) = (" << note.range.min << ", " << note.range.max << ")";
             if (note.expected)
@@ -142,6 +150,9 @@ struct call_rules {
     long budget = -1;                         // calls answered; -1: no limit
     bool check_calls = false;                 // when true, exactly the calls in `expected`, in order
     std::vector<expected_call<T>> expected;
+    // Chapter 10: when not empty, the (model, object-space ray) pairs a call may ask about (each
+    // instance's model and transform_ray(to_object, r)), in place of the one ray `r`.
+    std::vector<std::pair<int, ray<T>>> object_rays;
 };
 
 // The instructor's test of object i (a test's "wall", the reference sphere or triangle).
@@ -181,6 +192,12 @@ private:
         return std::memcmp(&a.min, &b.min, sizeof(T)) == 0 && std::memcmp(&a.max, &b.max, sizeof(T)) == 0;
     }
 
+    bool listed(int i, const ray<T>& r) const {
+        for (const auto& [object, object_ray] : rules_.object_rays)
+            if (object == i && same_bits(object_ray, r)) return true;
+        return false;
+    }
+
     std::optional<fault_note<T>> rule_broken(long call, int i, const ray<T>& r, const interval<T>& range) const {
         fault_note<T> note;
         note.call = call;
@@ -192,7 +209,9 @@ private:
             note.fault = call_fault::over_budget;
         } else if (i < 0 || i >= rules_.count) {
             note.fault = call_fault::no_such_object;
-        } else if (!same_bits(r, rules_.r)) {
+        } else if (!rules_.object_rays.empty() && !listed(i, r)) {
+            note.fault = call_fault::other_object_ray;
+        } else if (rules_.object_rays.empty() && !same_bits(r, rules_.r)) {
             note.fault = call_fault::other_ray;
         } else if (rules_.check_calls) {
             if (std::size_t(call) < rules_.expected.size()) {
@@ -227,16 +246,22 @@ struct served_objects {
     bool check_calls = false;
     std::vector<expected_call<T>> expected;
     std::optional<ray<T>> only_ray;  // when set, the one ray every call must ask about (else: the call's)
+    // Chapter 10: when not empty, the (model, ray) pairs calls may ask about (call_rules::object_rays).
+    // One served_objects then serves one call of the exercise: the test makes a new one per call.
+    std::vector<std::pair<int, ray<T>>> object_rays;
     std::shared_ptr<std::optional<object_server<T>>> here = std::make_shared<std::optional<object_server<T>>>();
 
     // The server of one call of the exercise, given ray r.
     object_server<T> server_for(const ray<T>& r) const {
-        return object_server<T>(call_rules<T>{only_ray ? *only_ray : r, count, budget, check_calls, expected}, test);
+        return object_server<T>(
+            call_rules<T>{only_ray ? *only_ray : r, count, budget, check_calls, expected, object_rays}, test);
     }
 
     std::optional<hit_record<T>> operator()(int i, const ray<T>& r, const interval<T>& range) const {
         const ray<T>& wanted = only_ray ? *only_ray : r;
-        if (!*here || std::memcmp(&(*here)->for_ray(), &wanted, sizeof wanted) != 0) here->emplace(server_for(r));
+        // The calls of one exercise call ask about many rays when object_rays is set: one server for them all.
+        if (!*here || (object_rays.empty() && std::memcmp(&(*here)->for_ray(), &wanted, sizeof wanted) != 0))
+            here->emplace(server_for(r));
         auto answer = (*here)->answer(i, r, range);
         if (const auto broken = (*here)->broken()) {
             here->reset();  // the exception ends this call of the exercise: the next call starts afresh
