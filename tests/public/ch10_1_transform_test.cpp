@@ -190,5 +190,10 @@ TEST_CASE_TEMPLATE("transform: a singular transform is refused with a clear mess
                       "make_placement must refuse a singular transform, naming where it came from; got \"" << message
                                                                                                          << "\"");
     }
-    CHECK_NOTHROW((void)make_placement<T>(scale({1e-3, 1, 1e3})));  // very unequal, yet invertible
+    // Very unequal scales, yet invertible: there and back again with your transform_ray.
+    const placement<T> p = make_placement<T>(compose(rotate({1, 1, 0}, 40), scale({1e-3, 1, 1e3})));
+    const ray<T> r{{T(1), T(2), T(3)}, {T(0.5), T(-1), T(0.25)}};
+    const ray<T> back = transform_ray(p.to_world, transform_ray(p.to_object, r));
+    CHECK_MESSAGE((rt::test::close(back.origin, r.origin) && rt::test::close(back.direction, r.direction)),
+                  "to_world undoes to_object: " << describe_ray(r) << " came back as " << describe_ray(back));
 }
