@@ -193,6 +193,10 @@ int run_chapter_program(int argc, char** argv, const chapter_program& program) {
     if (program.draws_scene)
         app.add_option("--scene", scene_path,
                        "render this scene file (scenes/README.md) with your code instead of the chapter's scene");
+    if (program.default_spp > 0) {
+        opt.spp = program.default_spp;
+        app.add_option("--spp", opt.spp, "samples per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str();
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -217,8 +221,9 @@ int run_chapter_program(int argc, char** argv, const chapter_program& program) {
         std::filesystem::path out(opt.out);
         if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
         write_png(img, opt.out);
-        std::printf("%s %s: %dx%d, %s, %.1f ms, %.1f Mrays/s -> %s\n", program.id.c_str(), program.title.c_str(),
-                    img.width, img.height, prec.c_str(), seconds * 1e3, double(rays) / seconds / 1e6,
+        const std::string spp = program.default_spp > 0 ? ", " + std::to_string(opt.spp) + " spp" : "";
+        std::printf("%s %s: %dx%d%s, %s, %.1f ms, %.1f Mrays/s -> %s\n", program.id.c_str(), program.title.c_str(),
+                    img.width, img.height, spp.c_str(), prec.c_str(), seconds * 1e3, double(rays) / seconds / 1e6,
                     opt.out.c_str());
         if (opt.report_error) {
             const std::string report =

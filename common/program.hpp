@@ -8,6 +8,7 @@
 //                    [--precision float|double] [--compare REFERENCE.png] [--error]
 //                    [--view YAW,PITCH]
 //                    [--scene FILE.json]   (chapters 03 on, which draw scene files)
+//                    [--spp N]             (chapters 11 on, which take several samples per pixel)
 //
 // --view YAW,PITCH sees the scene from a camera turned about the point it
 // looks at: YAW degrees about the camera's up direction (positive: the eye
@@ -63,6 +64,8 @@ struct program_options {
     // given with --scene. Kinds of shape the chapter cannot draw yet are
     // removed. width and height default to its camera's resolution.
     scene_description scene;
+    // --spp: samples per pixel, for programs with chapter_program::default_spp > 0 (1 otherwise).
+    int spp = 1;
 };
 
 // How a chapter draws its picture; rays_traced is how many rays it cast in
@@ -91,6 +94,9 @@ struct chapter_program {
     // True when render() draws opt.scene: only then does the program read its
     // scene file and offer --scene (so no program silently ignores it).
     bool draws_scene = false;
+    // > 0: render() takes several samples per pixel (chapters 11 on); the
+    // program offers --spp N and opt.spp is this unless N is given.
+    int default_spp = 0;
     // The kinds of shape render() can intersect besides spheres. A scene's
     // other shapes are left out, and the program says so.
     bool draws_planes = true;

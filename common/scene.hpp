@@ -30,6 +30,11 @@ struct material {
 struct point_light {
     vec3d position{0, 0, 0};
     color intensity{1, 1, 1};  // radiant intensity; falls off as 1 / distance^2
+    // 0: a point. > 0: a sphere light of this radius around `position`
+    // (chapter 11), glowing with radiance intensity / (pi radius^2), so that
+    // seen from afar it lights a surface as the point light would; only its
+    // shadows are soft. Chapters before 11 treat it as the point.
+    double radius = 0;
 };
 
 template <class T>

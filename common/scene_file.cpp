@@ -255,10 +255,13 @@ public:
         read_list(d, "triangles", [&](const json& j, const std::string& p) { read_triangle(d, j, p); });
         read_list(d, "meshes", [&](const json& j, const std::string& p) { read_mesh(d, j, p); });
         read_list(d, "lights", [&](const json& j, const std::string& p) {
-            check_keys(j, p, {"position", "intensity"});
+            check_keys(j, p, {"position", "intensity", "radius"});
             point_light light;
             light.position = read_point(required(j, p, "position", "a point [x, y, z]"), p + ".position");
             if (auto* i = member(j, "intensity")) light.intensity = read_color(*i, p + ".intensity");
+            if (auto* r = member(j, "radius"))
+                light.radius = read_number_in(*r, p + ".radius", 0, false, max_coordinate,
+                                              "a radius >= 0 (0: a point light; > 0: a sphere light, chapter 11)");
             d.world.lights.push_back(light);
         });
         if (auto* g = member(doc_, "generate")) read_generate(d, *g);  // last: may pass max_objects
@@ -385,7 +388,8 @@ private:
     }
 
     camera_description read_camera(const json& j, const std::string& path) const {
-        check_keys(j, path, {"type", "eye", "look_at", "up", "fov", "view_height", "width", "height"});
+        check_keys(j, path, {"type", "eye", "look_at", "up", "fov", "view_height", "width", "height", "aperture",
+                             "focus_distance"});
         camera_description c;
         if (auto* t = member(j, "type")) {
             std::string p = path + ".type";
@@ -400,6 +404,11 @@ private:
         if (!pinhole && member(j, "fov"))
             where_.fail_at_key(path + ".fov",
                                "fov belongs to a pinhole camera; an orthographic camera uses view_height");
+        for (const char* lens_key : {"aperture", "focus_distance"})
+            if (!pinhole && member(j, lens_key))
+                where_.fail_at_key(path + "." + lens_key, std::string(lens_key) +
+                                                              " belongs to a pinhole camera with a thin lens "
+                                                              "(chapter 11); an orthographic camera has no lens");
         c.eye = read_point(required(j, path, "eye", "the camera position [x, y, z]"), path + ".eye");
         c.look_at = read_point(required(j, path, "look_at", "the point the camera looks at [x, y, z]"),
                                path + ".look_at");
@@ -410,6 +419,12 @@ private:
         if (auto* h = member(j, "view_height"))
             c.view_height = read_number_in(*h, path + ".view_height", 0, true, max_coordinate,
                                            "a view height > 0");
+        if (auto* a = member(j, "aperture"))
+            c.aperture = read_number_in(*a, path + ".aperture", 0, false, max_coordinate,
+                                        "a lens radius >= 0 (0: a pinhole)");
+        if (auto* f = member(j, "focus_distance"))
+            c.focus_distance = read_number_in(*f, path + ".focus_distance", 0, true, max_coordinate,
+                                              "a distance > 0 to the plane in focus");
         if (auto* w = member(j, "width"))
             c.width = int(read_integer(*w, path + ".width", 1, max_image_side, "a whole number of pixels from 1 to 16384"));
         if (auto* h = member(j, "height"))

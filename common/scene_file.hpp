@@ -50,6 +50,8 @@ struct camera_description {
     vec3d up{0, 1, 0};
     double fov_degrees = 45;   // pinhole: vertical field of view
     double view_height = 2;    // orthographic: height of the view rectangle
+    double aperture = 0;       // pinhole: radius of a thin lens around the eye (chapter 11); 0 is a pinhole
+    double focus_distance = 0; // pinhole with a lens: distance of the sharp plane; 0 means |look_at - eye|
     int width = 400, height = 300;
 };
 

@@ -10,6 +10,7 @@
 // neither 0 nor 1 throws protocol_error (the runner may hold hostile code).
 #pragma once
 
+#include "common/camera.hpp"
 #include "common/hit_record.hpp"
 #include "common/interval.hpp"
 #include "common/math.hpp"
@@ -99,6 +100,15 @@ void get(reader& r, vec3<T>& v) {
     get(r, v.x), get(r, v.y), get(r, v.z);
 }
 
+template <class T>
+void put(writer& w, const glm::vec<2, T, glm::defaultp>& v) {
+    put(w, v.x), put(w, v.y);
+}
+template <class T>
+void get(reader& r, glm::vec<2, T, glm::defaultp>& v) {
+    get(r, v.x), get(r, v.y);
+}
+
 // --- the course's structs: each lists its members once ----------------------------------------------
 template <class T, class F> void fields(interval<T>& x, F&& f) { f(x.min, x.max); }
 template <class T, class F> void fields(ray<T>& x, F&& f) { f(x.origin, x.direction); }
@@ -107,7 +117,9 @@ template <class T, class F> void fields(plane<T>& x, F&& f) { f(x.point, x.norma
 template <class T, class F> void fields(triangle<T>& x, F&& f) { f(x.a, x.b, x.c, x.material); }
 template <class T, class F> void fields(hit_record<T>& x, F&& f) { f(x.t, x.point, x.normal, x.object); }
 template <class F> void fields(material& x, F&& f) { f(x.diffuse, x.specular, x.shininess, x.checker, x.checker_color); }
-template <class F> void fields(point_light& x, F&& f) { f(x.position, x.intensity); }
+template <class T, class F> void fields(camera_frame<T>& x, F&& f) { f(x.eye, x.u, x.v, x.w); }
+template <class T, class F> void fields(pinhole_camera<T>& x, F&& f) { f(x.frame, x.width, x.height, x.half_height); }
+template <class F> void fields(point_light& x, F&& f) { f(x.position, x.intensity, x.radius); }
 
 // Any callable does for the detection below (C++17 allows no lambda there).
 struct any_members {
