@@ -142,13 +142,15 @@ std::optional<hit_record<T>> instance_hit(const instance<T>& inst, const model_i
 //     so far, and about the range up to (and including) that hit, so a model
 //     never searches beyond what is already found.
 // Bound (what the tests check, on scenes of spheres and triangles placed by
-// turns, scales and translations): the same object as the scene built flat
-// (every object mapped to the world in double, rounded once to T), and
-//     |t - t_flat| <= 16 epsilon t max(1, distance / size)
-// for rays meeting the surface at |cos| >= 0.2, where distance / size is how
-// far the ray starts from the object in radii (a triangle: longest edges),
-// the factor by which chapter 02's sphere test loses digits (chapter 07).
-// Measured largest: 3.9 (README, "Rounding, measured").
+// affine maps, spheres by turns, scales and translations): the same object
+// as the scene built flat (every object mapped to the world in double,
+// rounded once to T), and
+//     |t - t_flat| <= 16 epsilon t c,
+// for rays meeting the surface at |cos| >= 0.2, where c is the largest of 1,
+// the ray's distance from the object over its size (chapter 07: the sphere
+// test loses digits with it) and the object's coordinates over the ray's
+// length to the hit |t d| (the flat scene's own rounding). Measured largest
+// ratio: README, "Rounding, measured".
 // What the tests count, from the calls they answer: along a row of
 // instances the ray crosses, nearest first with pruning asks almost only the
 // nearest one; every ray a model is asked about is some instance's

@@ -159,7 +159,7 @@ TEST_CASE_TEMPLATE("instancing: a scene built flat and from instances give the s
         const vec3<T> unit = normalize(r.direction);
         if (std::fabs(dot(unit, want->normal)) < T(0.2)) continue;  // grazing: the bound is for good angles
         ++compared;
-        const T conditioning = s.flat.conditioning(want->object, r.origin);
+        const T conditioning = s.flat.conditioning(want->object, r, want->t);
         if (got) worst = std::fmax(worst, t_error_epsilons(got->t, want->t, conditioning));
         if ((!got || got->object != want->object || !t_close(got->t, want->t, conditioning)) && first.empty())
             first = describe_ray(r) + ": flat " + object_of(want) + "; from instances " + object_of(got);
@@ -268,7 +268,7 @@ TEST_CASE_TEMPLATE("instancing: the sphereflake as instances of instances is the
         const auto got = closest_hit(scene, model_intersector<T>(served_for(models, scene.instances, r)), r, range);
         if (!want || std::fabs(dot(normalize(r.direction), want->normal)) < T(0.2)) continue;
         ++compared;
-        const T conditioning = flat_flake.conditioning(want->object, r.origin);
+        const T conditioning = flat_flake.conditioning(want->object, r, want->t);
         if (got) worst = std::fmax(worst, t_error_epsilons(got->t, want->t, conditioning));
         if ((!got || got->object != want->object || !t_close(got->t, want->t, conditioning)) && first.empty())
             first = describe_ray(r) + ": flat " + object_of(want) + "; from instances " + object_of(got);

@@ -191,20 +191,27 @@ struct flat_scene {
         return best;
     }
 
-    // How ill-conditioned object `object`'s own test is for a ray from `origin`: the distance to the
-    // object over its size (a sphere's radius, a triangle's longest edge), at least 1. Chapter 07: the
-    // sphere test's error in t grows with it (the far sphere), so the bound below does too.
-    T conditioning(int object, const vec3<T>& origin) const {
+    // How ill-conditioned the hit of object `object` at t is, as a factor on epsilon t: the largest of 1,
+    //   distance / size   how far the ray starts from the object (a sphere's centre, a triangle's first
+    //                     corner) over its size (radius, longest edge): chapter 07's far sphere, where
+    //                     the sphere test's t loses digits;
+    //   coordinates / t|d| how large the object's coordinates are against the ray's length to the hit: the
+    //                     flat scene's coordinates are rounded to T once, an absolute error of epsilon
+    //                     times their size, which moves the hit by that much along the ray.
+    T conditioning(int object, const ray<T>& r, T t) const {
+        const T reach = t * length(r.direction);
+        auto largest = [](const vec3<T>& p) { return std::fmax(std::fabs(p.x), std::fmax(std::fabs(p.y), std::fabs(p.z))); };
         for (size_t k = 0; k < parts.size(); ++k) {
             const int j = object - first[k];
             if (j < 0 || j >= parts[k].count()) continue;
             if (size_t(j) < parts[k].spheres.size()) {
                 const sphere<T>& s = parts[k].spheres[size_t(j)];
-                return std::fmax(T(1), length(origin - s.center) / s.radius);
+                return std::fmax(T(1), std::fmax(length(r.origin - s.center) / s.radius, (largest(s.center) + s.radius) / reach));
             }
-            const triangle<T>& t = parts[k].triangles[size_t(j) - parts[k].spheres.size()];
-            const T size = std::fmax(length(t.b - t.a), std::fmax(length(t.c - t.b), length(t.a - t.c)));
-            return std::fmax(T(1), length(origin - t.a) / size);
+            const triangle<T>& tri = parts[k].triangles[size_t(j) - parts[k].spheres.size()];
+            const T size = std::fmax(length(tri.b - tri.a), std::fmax(length(tri.c - tri.b), length(tri.a - tri.c)));
+            const T coordinates = std::fmax(largest(tri.a), std::fmax(largest(tri.b), largest(tri.c)));
+            return std::fmax(T(1), std::fmax(length(r.origin - tri.a) / size, coordinates / reach));
         }
         return T(1);
     }
