@@ -753,6 +753,66 @@ def bvh():
     return svg
 
 
+# ---- chapter 10 -------------------------------------------------------------------
+
+def normals_figure():
+    """Chapter 10: a circle stretched into an ellipse; at one point the tangent maps to A t, the
+    normal by A n leans off the surface, the inverse transpose stays perpendicular."""
+    svg = Svg(640, 300, "Normals under a non-uniform scale: A n against (A^-1)^T n")
+    left, right = Frame(140, 160, 80), Frame(430, 160, 80)
+    sx, sy = 2.2, 0.7
+    pts = [(math.cos(2 * math.pi * k / 96), math.sin(2 * math.pi * k / 96)) for k in range(97)]
+    svg.polyline([left(x, y) for x, y in pts], colour=SURFACE)
+    svg.polyline([right(sx * x, sy * y) for x, y in pts], colour=SURFACE)
+    a = math.radians(50)
+    p, n, t = (math.cos(a), math.sin(a)), (math.cos(a), math.sin(a)), (-math.sin(a), math.cos(a))
+    svg.dot(*left(*p))
+    svg.line(*left(*p), *left(p[0] + 0.7 * n[0], p[1] + 0.7 * n[1]), colour=NORMAL, arrow=True)
+    svg.line(*left(p[0] - 0.6 * t[0], p[1] - 0.6 * t[1]), *left(p[0] + 0.6 * t[0], p[1] + 0.6 * t[1]),
+             colour=GUIDE, dash="5,4")
+    svg.text(*left(p[0] + 0.75 * n[0], p[1] + 0.8 * n[1]), "n", colour=NORMAL)
+    svg.text(140, 285, "object space: the unit circle", anchor="middle")
+    q = (sx * p[0], sy * p[1])
+    at = unit(sx * t[0], sy * t[1])
+    wrong = unit(sx * n[0], sy * n[1])
+    right_n = unit(n[0] / sx, n[1] / sy)
+    svg.dot(*right(*q))
+    svg.line(*right(q[0] - 0.8 * at[0], q[1] - 0.8 * at[1]), *right(q[0] + 0.8 * at[0], q[1] + 0.8 * at[1]),
+             colour=GUIDE, dash="5,4")
+    svg.line(*right(*q), *right(q[0] + 0.8 * wrong[0], q[1] + 0.8 * wrong[1]), colour=HIT, arrow=True)
+    svg.line(*right(*q), *right(q[0] + 0.8 * right_n[0], q[1] + 0.8 * right_n[1]), colour=NORMAL, arrow=True)
+    svg.text(*right(q[0] + 0.85 * wrong[0] + 0.05, q[1] + 0.85 * wrong[1]), "A n (wrong)", colour=HIT)
+    svg.text(*right(q[0] + 0.85 * right_n[0] - 0.1, q[1] + 0.85 * right_n[1] + 0.12), "(A⁻¹)ᵀ n",
+             colour=NORMAL, anchor="end")
+    svg.text(*right(q[0] + 0.8 * at[0] + 0.05, q[1] + 0.8 * at[1] - 0.1), "A t", colour=GUIDE)
+    svg.text(430, 285, "world: scaled by (2.2, 0.7)", anchor="middle")
+    return svg
+
+
+def instance_box_figure():
+    """Chapter 10: a box turned by 30 degrees: the box of the images of lo and hi alone, and the box
+    of all four (in 3D: eight) corners' images."""
+    svg = Svg(640, 300, "The box of a placed box: all corners, not lo and hi alone")
+    f = Frame(320, 150, 52)
+    c, s = math.cos(math.radians(30)), math.sin(math.radians(30))
+    corners = [(-1.6, -0.8), (1.6, -0.8), (1.6, 0.8), (-1.6, 0.8)]
+    turned = [(c * x - s * y, s * x + c * y) for x, y in corners]
+    svg.polyline([f(*q) for q in turned], colour=SURFACE, fill=FILLS[1], opacity=0.6, close=True)
+    lo, hi = turned[0], turned[2]
+    xs, ys = [q[0] for q in turned], [q[1] for q in turned]
+    svg.rect(*f(min(xs), max(ys)), (max(xs) - min(xs)) * 52, (max(ys) - min(ys)) * 52, colour=NORMAL, width=2.5)
+    x0, x1, y0, y1 = min(lo[0], hi[0]), max(lo[0], hi[0]), min(lo[1], hi[1]), max(lo[1], hi[1])
+    svg.rect(*f(x0, y1), (x1 - x0) * 52, (y1 - y0) * 52, colour=HIT, dash="7,5")
+    for q, name in ((lo, "A lo + b"), (hi, "A hi + b")):
+        svg.dot(*f(*q), colour=HIT)
+        svg.text(*f(q[0] + 0.1, q[1] - 0.3 if q is lo else q[1] + 0.15), name, colour=HIT)
+    for q in (turned[1], turned[3]):
+        svg.dot(*f(*q), colour=NORMAL)
+    svg.text(20, 30, "dashed: the box of lo and hi only (two corners stick out)", colour=HIT)
+    svg.text(20, 285, "solid: the box of every corner's image, then widened against rounding", colour=NORMAL)
+    return svg
+
+
 # Every figure: where it goes (relative to the repository) and what draws it.
 FIGURES = {
     "chapters/01-unit-sphere/figures/roots.svg": unit_sphere_roots,
@@ -766,6 +826,8 @@ FIGURES = {
     "chapters/07-precision/figures/float_spacing.svg": float_spacing,
     "chapters/08-acceleration/figures/slabs.svg": slabs,
     "chapters/08-acceleration/figures/bvh.svg": bvh,
+    "chapters/10-transforms/figures/normals.svg": normals_figure,
+    "chapters/10-transforms/figures/instance_box.svg": instance_box_figure,
 }
 
 
