@@ -814,6 +814,106 @@ def instance_box_figure():
 
 
 # Every figure: where it goes (relative to the repository) and what draws it.
+# ---- chapter 11: where the samples go, the light's cone, the thin lens ------------------------------
+
+
+def _lcg_points(count, seed):
+    """Deterministic pseudo-random numbers in [0, 1) for the figure (a 32-bit LCG, Numerical Recipes' constants)."""
+    state, out = seed, []
+    for _ in range(count):
+        state = (1664525 * state + 1013904223) % 2 ** 32
+        out.append(state / 2 ** 32)
+    return out
+
+
+def _radical_inverse(base, i):
+    inverse, scale = 0.0, 1.0 / base
+    while i > 0:
+        inverse += (i % base) * scale
+        i //= base
+        scale /= base
+    return inverse
+
+
+def sample_patterns():
+    svg = Svg(900, 380, "Sixteen samples of a pixel: random, stratified, Halton")
+    svg.text(20, 30, "Sixteen samples of one pixel, three ways", size=17, weight="bold")
+    side, top = 240, 70
+    u = _lcg_points(64, 11)
+    panels = [
+        ("random: clumps and holes", [(u[2 * k], u[2 * k + 1]) for k in range(16)], False),
+        ("stratified: one per cell of 4 x 4", [((k % 4 + u[32 + 2 * k]) / 4, (k // 4 + u[33 + 2 * k]) / 4)
+                                               for k in range(16)], True),
+        ("Halton (bases 2, 3): fills every gap", [(_radical_inverse(2, k), _radical_inverse(3, k))
+                                                  for k in range(16)], False),
+    ]
+    for p, (title, points, grid) in enumerate(panels):
+        x0 = 40 + p * (side + 45)
+        svg.rect(x0, top, side, side, SURFACE, 2)
+        if grid:
+            for i in range(1, 4):
+                svg.line(x0 + i * side / 4, top, x0 + i * side / 4, top + side, GUIDE, 1, dash="4 4")
+                svg.line(x0, top + i * side / 4, x0 + side, top + i * side / 4, GUIDE, 1, dash="4 4")
+        for x, y in points:
+            svg.dot(x0 + x * side, top + y * side, RAY, 5)
+        svg.text(x0 + side / 2, top + side + 28, title, size=14, anchor="middle")
+    svg.text(20, 368, "Same count, same cost: the stratified and Halton points leave no region of the pixel "
+             "unsampled, which is why their error falls faster.", size=13, colour=GUIDE)
+    return svg
+
+
+def light_cone_and_lens():
+    svg = Svg(900, 420, "The cone a sphere light fills, and the thin lens")
+    svg.text(20, 30, "Left: a sphere light seen from x.  Right: a thin lens focused at distance f.", size=17,
+             weight="bold")
+    # left: the cone
+    f = Frame(60, 250, 60)
+    x = (0.0, 0.0)
+    c, r = (5.0, 1.2), 1.0
+    X, C = f(*x), f(*c)
+    d = math.hypot(c[0] - x[0], c[1] - x[1])
+    theta_max = math.asin(r / d)
+    axis = math.atan2(c[1] - x[1], c[0] - x[0])
+    svg.circle(*C, r * f.s, LIGHT, 2.5, fill="#fff0b3")
+    svg.text(C[0] + r * f.s + 8, C[1] + 5, "light (r)", size=14, colour=LIGHT)
+    for sgn in (-1, 1):
+        a = axis + sgn * theta_max
+        t = d * math.cos(theta_max)
+        svg.line(*X, *f(x[0] + t * math.cos(a), x[1] + t * math.sin(a)), GUIDE, 1.5, dash="6 4")
+    svg.line(*X, *C, GUIDE, 1.5)
+    svg.text((X[0] + C[0]) / 2 - 10, (X[1] + C[1]) / 2 + 22, "d", size=15, italic=True, colour=GUIDE)
+    a = axis + 0.45 * theta_max
+    e = 1 - math.cos(0.45 * theta_max)
+    tt = d * math.cos(0.45 * theta_max) - math.sqrt(max(0.0, r * r - d * d * e * (2 - e)))
+    P = f(x[0] + tt * math.cos(a), x[1] + tt * math.sin(a))
+    svg.line(*X, *P, RAY, 2.5, arrow=True)
+    svg.dot(*P, HIT, 5)
+    svg.text(P[0] - 6, P[1] - 12, "sample point", size=13, colour=HIT, anchor="end")
+    svg.dot(*X, INK, 5)
+    svg.text(X[0] - 8, X[1] + 22, "x", size=15, italic=True)
+    svg.text(30, 330, "sin² θmax = (r / d)²,  solid angle 2π (1 − cos θmax)", size=14)
+    svg.text(30, 352, "pdf = 1 / (2π (1 − cos θmax)) per steradian", size=14)
+    svg.text(30, 374, "1 − cos θmax = s / (1 + √(1 − s)), s = (r/d)²: no cancellation", size=14, colour=GUIDE)
+    # right: the thin lens
+    g = Frame(520, 210, 55)
+    lens_h = 1.1
+    svg.line(*g(0, -lens_h), *g(0, lens_h), VIEW, 4)
+    svg.text(*g(-0.2, lens_h + 0.35), "lens (aperture)", size=13, colour=VIEW)
+    focus = (5.5, 0.6)
+    F = g(*focus)
+    svg.line(*g(5.5, -1.8), *g(5.5, 1.8), GUIDE, 1.5, dash="6 4")
+    svg.text(*g(5.0, -2.2), "plane in focus", size=13, colour=GUIDE)
+    for y0 in (-lens_h * 0.9, 0.0, lens_h * 0.7):
+        svg.line(*g(0, y0), *F, RAY, 2, arrow=False)
+        svg.dot(*g(0, y0), RAY, 4)
+    svg.dot(*F, HIT, 5)
+    svg.text(F[0] + 8, F[1] - 8, "eye + f · d", size=13, colour=HIT)
+    svg.text(*g(0.2, -1.6), "eye + offset", size=13, colour=RAY)
+    svg.text(*g(-0.4, -2.7), "direction = d − offset / f: every lens ray meets the point in focus;", size=13)
+    svg.text(*g(-0.4, -3.1), "offset = aperture · √u · (cos 2πv, sin 2πv): uniform over the disc", size=13)
+    return svg
+
+
 FIGURES = {
     "chapters/01-unit-sphere/figures/roots.svg": unit_sphere_roots,
     "chapters/02-sphere/figures/geometric_derivation.svg": lambda: geometric_derivation("ch02"),
@@ -828,6 +928,8 @@ FIGURES = {
     "chapters/08-acceleration/figures/bvh.svg": bvh,
     "chapters/10-transforms/figures/normals.svg": normals_figure,
     "chapters/10-transforms/figures/instance_box.svg": instance_box_figure,
+    "chapters/11-sampling/figures/sample_patterns.svg": sample_patterns,
+    "chapters/11-sampling/figures/light_cone_and_lens.svg": light_cone_and_lens,
 }
 
 
