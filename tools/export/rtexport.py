@@ -42,8 +42,9 @@ KIT_DENY = ["*/__pycache__/*", "*.pyc", "*/.DS_Store",
             "/tools/grader/README.md",              # the instructor's manual: the kit's README says how to preview
             "/tools/grader/screenshots/*",          # its pictures
             "/tools/grader/results/*",              # where and when the instructor's figures were measured
-            "/tests/support/rpc/README.md",
-            "/chapters/07-precision/worked_values.cpp"]  # evaluates the stable root pair: step 2's answer         # the judge/runner layer's page for contributors
+            "/tests/support/rpc/README.md",                # the judge/runner layer's page for contributors
+            "/chapters/07-precision/worked_values.cpp",    # evaluates the stable root pair: step 2's answer
+            "/chapters/10-transforms/rounding_study.cpp"]  # its exact reference intersects spheres and triangles
 PRIVATE = ["solutions", "tests/hidden", "tests/fixtures"]
 
 # What may ship, by kind: every file of a written kit must match one of these
