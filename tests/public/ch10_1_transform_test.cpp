@@ -157,10 +157,10 @@ TEST_CASE_TEMPLATE("transform: an instance's box is tight: no larger than the co
         const ch08::aabb<T> box{vec3<T>(T(-1), T(-0.5), T(0)), vec3<T>(T(1), T(2), T(0.25))};
         const ch08::aabb<T> world = instance_box(p.to_world, box);
         ch08::aabb<double> exact;
-        for (int c = 0; c < 8; ++c) {
-            const vec3<T> corner{c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y, c & 4 ? box.hi.z : box.lo.z};
-            exact.grow(vec3d(exact_point(p.to_world, corner)));
-        }
+        // The exact images of the eight corners (each coordinate lo or hi).
+        for (T x : {box.lo.x, box.hi.x})
+            for (T y : {box.lo.y, box.hi.y})
+                for (T z : {box.lo.z, box.hi.z}) exact.grow(vec3d(exact_point(p.to_world, vec3<T>(x, y, z))));
         const double slack = 1e-3;  // far more than any pad here (the box is of size about 1 at about 10)
         CHECK_MESSAGE((world.lo.x >= exact.lo.x - slack && world.lo.y >= exact.lo.y - slack &&
                        world.lo.z >= exact.lo.z - slack && world.hi.x <= exact.hi.x + slack &&
