@@ -108,6 +108,9 @@ struct soa_scene {
     std::vector<T> px, py, pz, nx, ny, nz;  // planes: a point and the unit normal
     std::vector<T> ax, ay, az, e1x, e1y, e1z, e2x, e2y, e2z;  // triangles: corner a, edges b-a, c-a
     std::vector<T> bx, by, bz, br2;  // a sphere around each triangle (radius squared), to skip it cheaply
+    // How much every box is widened (build_trees) and every cull sphere too:
+    // 1e-6 of the scene's magnitude.
+    double box_pad = 0;
 
     // With a tree, spheres and triangles are stored in the trees' leaf
     // order, so a leaf is a contiguous range of the arrays; original[i] is
@@ -144,13 +147,13 @@ struct soa_scene {
 
     // magnitude: the largest coordinate of the scene, eye and lights, which
     // sets how much the boxes are widened (see build_trees below).
-    soa_scene(const scene<double>& s, bool use_tree, double magnitude) : tree(use_tree) {
+    soa_scene(const scene<double>& s, bool use_tree, double magnitude) : box_pad(1e-6 * magnitude), tree(use_tree) {
         sphere_count = s.spheres.size();
         plane_count = s.planes.size();
         triangle_count = s.triangles.size();
         source_triangles = &s.triangles;
         source_planes = &s.planes;
-        if (tree) build_trees(s, magnitude);
+        if (tree) build_trees(s);
         for (size_t j = 0; j < sphere_count; ++j) add_sphere(s.spheres[tree ? sphere_tree.order[j] : j]);
         for (const auto& x : s.planes) add_plane(x);
         for (size_t j = 0; j < triangle_count; ++j) add_triangle(s.triangles[tree ? triangle_tree.order[j] : j]);
@@ -188,16 +191,16 @@ struct soa_scene {
         ax.push_back(a.x), ay.push_back(a.y), az.push_back(a.z);
         e1x.push_back(e1.x), e1y.push_back(e1.y), e1z.push_back(e1.z);
         e2x.push_back(e2.x), e2y.push_back(e2.y), e2z.push_back(e2.z);
-        // Centred on the centroid, through the farthest corner, made 1%
-        // larger for the rounding of this centre and radius. The cull test's
-        // own rounding (relative to the distance from the ray's origin) is
-        // not covered: for a triangle smaller than that rounding, or a
-        // direction whose d.d underflows, the cull can skip a triangle the
-        // kernel would report hit, and brute force then differs from the tree.
+        // The cull sphere (triangle_near_packet): centred on the centroid,
+        // through the farthest corner, made 1% larger and then widened by the
+        // boxes' padding (build_trees), which covers the rounding of this
+        // centre to T and lets through every ray the tree's padded boxes let
+        // through. Stored squared and times 1.02: the slack the cull's own
+        // rounding bound takes (cull_radius2).
         const vec3d centre = (x.a + x.b + x.c) / 3.0;
-        const double r = 1.01 * std::max({length(x.a - centre), length(x.b - centre), length(x.c - centre)});
+        const double r = 1.01 * std::max({length(x.a - centre), length(x.b - centre), length(x.c - centre)}) + box_pad;
         bx.push_back(T(centre.x)), by.push_back(T(centre.y)), bz.push_back(T(centre.z));
-        br2.push_back(T(r * r));
+        br2.push_back(std::nextafter(T(1.02 * 1.01 * r * r), infinity<T>));
     }
 
     // original[i]: the scene's number of stored object i (spheres, then
@@ -211,12 +214,12 @@ struct soa_scene {
 
     // Float boxes that hold each object as the kernels see it, whatever the
     // rounding: the exact box, rounded outwards to float, widened by
-    // 1e-6 of the scene's magnitude (float's own rounding of a coordinate
+    // box_pad, 1e-6 of the scene's magnitude (float's own rounding of a coordinate
     // or of a ray's origin and direction is 6e-8 of it). A box test in
     // float can then only let through too much, never drop a hit, so the
     // tree gives the same closest object and t as brute force.
-    void build_trees(const scene<double>& s, double magnitude) {
-        const double pad = 1e-6 * magnitude;
+    void build_trees(const scene<double>& s) {
+        const double pad = box_pad;
         auto box_of = [&](vec3d lo, vec3d hi) {
             bvh_box b;
             for (int a = 0; a < 3; ++a) {

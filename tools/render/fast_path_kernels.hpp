@@ -33,13 +33,12 @@ namespace rt::render_tool {
 // scene's shapes): a triangle's corners, a plane's normal as given.
 // Directions: any non-zero finite one, subnormal components included (see
 // direction_max). Triangles whose edge products underflow are not rescaled.
-// The sphere kernels (fast_path_spheres.hpp) compute a = d.d plainly and are
-// NOT scaled: a direction whose d.d underflows is a miss for every sphere,
-// closest and any hit, and that is not only a subnormal one: in float any
-// direction whose largest component is below about 1e-19 (1e-154 in double).
-// The renderer's own rays are not that short (camera rays have length about 1,
-// the image plane being at distance 1; shadow rays run from a hit to a light),
-// but nothing refuses a scene whose light sits that close to a surface.
+// The sphere kernels (fast_path_spheres.hpp) compute a = d.d and 1 / a
+// plainly, which underflow or overflow for a direction far from length 1
+// (|d| about 1e-20 in float already: d.d = 1e-40 is below the normal range).
+// They never see one: closest_hits and any_hit (fast_path_queries.hpp) give
+// a ray whose direction_scale is not 0 its direction scaled by 2^e and the
+// range by 2^-e, and scale the answer back (exact: t = 2^e t').
 template <class T>
 inline constexpr T half_ulp = std::numeric_limits<T>::epsilon() / 2;
 

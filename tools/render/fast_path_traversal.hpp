@@ -7,19 +7,24 @@
 #error "a part of fast_path.cpp: included by it, after its headers and its target pragma"
 #endif
 
-// A ray direction's reciprocal for the slab test. A zero component becomes
-// 1e30 instead of infinity: (box side - origin) * 1e30 is then 0 or huge,
-// never 0 * infinity = NaN. This is not chapter 08's rule and not exact:
-// with the origin exactly on a face plane of a slab the ray lies in, that
-// face's parameter is 0, so the slab's interval ends at t = 0 instead of
-// covering every t, and a box the ray runs along counts as left at once.
-// What hides it is the boxes' padding (build_trees: 1e-6 of the scene's
-// magnitude), which keeps rays' origins off the faces of ordinary scenes.
-// Likewise a component that is non-zero but subnormal in float (or below
-// float's range) is treated as zero or as an overflowing reciprocal.
-inline float slab_reciprocal(float d) {
-    return d == 0.0f ? std::copysign(1e30f, d) : 1.0f / d;
-}
+// The slab test's rule is chapter 08's (solutions/08-acceleration): the
+// reciprocal of a direction component is 1 / d, infinite for a zero one;
+// the near face is lo when d's sign bit is clear and hi otherwise, and the
+// running entry and exit are updated by selects that keep the old value
+// when the new one is NaN. A NaN, (face - o) * inf = 0 * inf, comes only
+// from a ray parallel to a slab with its origin on one of the slab's face
+// planes; such a ray lies in the closed slab for every t, so the slab
+// constrains nothing, which is what skipping the NaN gives. (The stand-in
+// 1e30 for infinity this replaces gave an exit of 0 there, and a finite
+// exit near t = 1 for coordinates near 2^-100.)
+// A component that is not zero but whose reciprocal overflows float (below
+// 2^-128) is treated as parallel. That cannot drop a hit in a box padded
+// by box_pad (soa_scene::build_trees): the renderer's directions have a
+// largest component of at least 2^-31 (closest_hits and any_hit scale
+// shorter ones), so over any t that stays within the scene a ray moves by
+// less than 2^-90 of the scene's magnitude along such an axis, far below
+// the 1e-6 of it that every box is widened by beyond its object.
+inline float slab_reciprocal(float d) { return 1.0f / d; }
 
 // The far end of a slab interval is widened by a few units in the last
 // place (Ize, "Robust BVH Ray Traversal", JCGT 2013), so a rounded exit
@@ -39,16 +44,25 @@ struct packet_slabs {
         }
     }
 
+    // One axis of one ray's slab test (chapter 08's rule, see slab_reciprocal):
+    // the near face by the reciprocal's sign bit, NaN skipped by the selects.
+    [[gnu::always_inline]] static void axis(float lo, float hi, float o, float inv, float& enter, float& leave) {
+        const bool down = std::signbit(inv);
+        const float t_near = ((down ? hi : lo) - o) * inv, t_far = ((down ? lo : hi) - o) * inv;
+        enter = t_near > enter ? t_near : enter;
+        leave = t_far < leave ? t_far : leave;
+    }
+
     // Does some ray k of the packet enter box b before best_t[k]?
     template <class T>
     [[gnu::always_inline]] bool opened(const bvh_box& b, const T* best_t) const {
         int any = 0;
         for (int k = 0; k < W; ++k) {
-            const float x0 = (b.lo[0] - ox[k]) * ix[k], x1 = (b.hi[0] - ox[k]) * ix[k];
-            const float y0 = (b.lo[1] - oy[k]) * iy[k], y1 = (b.hi[1] - oy[k]) * iy[k];
-            const float z0 = (b.lo[2] - oz[k]) * iz[k], z1 = (b.hi[2] - oz[k]) * iz[k];
-            const float enter = std::max(std::max(std::min(x0, x1), std::min(y0, y1)), std::max(std::min(z0, z1), 0.0f));
-            const float leave = std::min(std::min(std::max(x0, x1), std::max(y0, y1)), std::max(z0, z1)) * slab_widen;
+            float enter = 0.0f, leave = infinity<float>;
+            axis(b.lo[0], b.hi[0], ox[k], ix[k], enter, leave);
+            axis(b.lo[1], b.hi[1], oy[k], iy[k], enter, leave);
+            axis(b.lo[2], b.hi[2], oz[k], iz[k], enter, leave);
+            leave *= slab_widen;
             // best_t in float, rounded up a little: never below the true value.
             const float limit = float(best_t[k]) * slab_widen;
             any |= int((enter <= leave) & (enter <= limit));
@@ -98,10 +112,12 @@ template <class T, class Blocked>
     const float limit = float(tmax) * slab_widen;
     auto opened = [&](const bvh_box& b) {
         float enter = 0, leave = limit;
-        for (int a = 0; a < 3; ++a) {
-            const float t0 = (b.lo[a] - o[a]) * inv[a], t1 = (b.hi[a] - o[a]) * inv[a];
-            enter = std::max(enter, std::min(t0, t1));
-            leave = std::min(leave, std::max(t0, t1) * slab_widen);
+        for (int a = 0; a < 3; ++a) {  // chapter 08's rule, as packet_slabs::axis
+            const bool down = std::signbit(inv[a]);
+            const float t0 = ((down ? b.hi[a] : b.lo[a]) - o[a]) * inv[a];
+            const float t1 = ((down ? b.lo[a] : b.hi[a]) - o[a]) * inv[a] * slab_widen;
+            enter = t0 > enter ? t0 : enter;
+            leave = t1 < leave ? t1 : leave;
         }
         return enter <= leave;
     };
@@ -148,7 +164,7 @@ struct wide_ray {
         for (int a = 0; a < 3; ++a) {
             o[a] = float(origin[a]);
             inv[a] = slab_reciprocal(float(direction[a]));
-            negative[a] = inv[a] < 0;
+            negative[a] = std::signbit(inv[a]);  // -0 too: its reciprocal is -inf
         }
     }
 
@@ -165,8 +181,8 @@ struct wide_ray {
             const f4 lo = row(n.lo[a]), hi = row(n.hi[a]);
             const f4 t0 = ((negative[a] ? hi : lo) - o[a]) * inv[a];
             const f4 t1 = ((negative[a] ? lo : hi) - o[a]) * inv[a] * slab_widen;
-            enter = enter > t0 ? enter : t0;
-            leave = leave < t1 ? leave : t1;
+            enter = t0 > enter ? t0 : enter;  // NaN (the origin on a face plane of a slab
+            leave = t1 < leave ? t1 : leave;  // the ray is parallel to) keeps the old value
         }
         const auto in = enter <= leave;
         int h = 0;

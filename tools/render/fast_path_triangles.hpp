@@ -63,16 +63,48 @@ struct triangle_group {
     }
 };
 
+// The cull sphere's squared radius for a ray whose origin is f from its
+// centre, with the cull's own rounding taken in. Why it is conservative
+// (u = epsilon / 2, no underflow or overflow: the renderer's directions are
+// scaled to a comfortable length, shadow_ray and packet_best): the computed
+// perpendicular g = fl(f - fl(fl(f.d) / fl(d.d)) d) is within about 11 u |f|
+// of the exact one (f within u |f|, the quotient within 8 u |f| / |d|, the
+// product and the difference u more each; |g| <= |f|), and
+// (r + x)^2 <= 1.01 r^2 + 101 x^2 for every x (AM-GM). So with
+// x = 16 u |f| a ray that passes within r of the centre has
+// |g|^2 <= 1.01 r^2 + 101 x^2, and the 1.02 that br2 and this term carry
+// leaves room for the rounding of the squares and sums (a few u). The
+// term x^2 matters only for a triangle smaller than float's rounding of
+// its distance (a few 1e-6 of it); the 1% and the boxes' padding are the
+// rest (add_triangle).
+template <class T>
+inline T cull_radius2(T br2, T fx, T fy, T fz) {
+    constexpr T u = std::numeric_limits<T>::epsilon() / 2;
+    constexpr T rounding = T(1.02 * 101 * 256) * u * u;
+    return br2 + rounding * (fx * fx + fy * fy + fz * fz);
+}
+
 // Does some ray of the packet come near triangle i's bounding sphere? (The
 // robust discriminant: accurate even when the triangle is small and far away.)
+// Never drops a triangle whose kernel would report a hit the tree's padded
+// boxes let through (cull_radius2), so brute force and the tree agree to the
+// bit. Written !(disc < 0): a NaN keeps the triangle.
 template <class T, bool CommonOrigin>
 [[gnu::always_inline]] inline bool triangle_near_packet(const soa_scene<T>& s, size_t i, const packet<T>& p, const packet_best<T>& best) {
     int near_any = 0;
-    for (int k = 0; k < W; ++k) {
-        const int o = CommonOrigin ? 0 : k;
-        const T fx = p.ox[o] - s.bx[i], fy = p.oy[o] - s.by[i], fz = p.oz[o] - s.bz[i];
-        near_any |= int(sphere_discriminant<T, sphere_mode::robust>(fx, fy, fz, T(0), s.br2[i], p.dx[k], p.dy[k],
-                                                                    p.dz[k], best.a[k], best.inv_a[k]) >= T(0));
+    if constexpr (CommonOrigin) {
+        const T fx = p.ox[0] - s.bx[i], fy = p.oy[0] - s.by[i], fz = p.oz[0] - s.bz[i];
+        const T rr = cull_radius2(s.br2[i], fx, fy, fz);
+        for (int k = 0; k < W; ++k)
+            near_any |= int(!(sphere_discriminant<T, sphere_mode::robust>(fx, fy, fz, T(0), rr, p.dx[k], p.dy[k],
+                                                                          p.dz[k], best.a[k], best.inv_a[k]) < T(0)));
+    } else {
+        for (int k = 0; k < W; ++k) {
+            const T fx = p.ox[k] - s.bx[i], fy = p.oy[k] - s.by[i], fz = p.oz[k] - s.bz[i];
+            const T rr = cull_radius2(s.br2[i], fx, fy, fz);
+            near_any |= int(!(sphere_discriminant<T, sphere_mode::robust>(fx, fy, fz, T(0), rr, p.dx[k], p.dy[k],
+                                                                          p.dz[k], best.a[k], best.inv_a[k]) < T(0)));
+        }
     }
     return near_any != 0;
 }
