@@ -72,9 +72,9 @@ root_pair<T> stable_roots(wide<T> a, wide<T> half_b, wide<T> c, wide<T> quarter_
     return roots;
 }
 
-// The triple-precision sum behind step 3. The formulation study keeps the same
-// sum in formulations/sphere_pieces.hpp: a submission is this one file, so the
-// reference answer cannot include an instructor header.
+// The triple-precision sum behind step 3. The formulation study and the
+// numerics tests run this very file (formulations/chapter07_reference.cpp), so
+// the robust sphere is written once, here, in one file as a submission is.
 namespace sphere_pieces {
 
 // c = f.f - r^2 from its exact pieces: (hi + lo)^2 = hi^2 + 2 hi lo + lo^2 for

@@ -6,14 +6,14 @@
 namespace rt::formulations {
 
 // Every formulation is compiled for both precisions here (house rule: all
-// numerical code is instantiated for float and double).
+// numerical code is instantiated for float and double); the compensated one,
+// chapter 07's solution, in chapter07_reference.cpp.
 #define RT_INSTANTIATE(T)                                                                                 \
     template std::optional<T> sphere_plain<T>(const ray<T>&, const sphere<T>&, const interval<T>&);          \
     template std::optional<T> sphere_half_b<T>(const ray<T>&, const sphere<T>&, const interval<T>&);         \
     template std::optional<T> sphere_geometric<T>(const ray<T>&, const sphere<T>&, const interval<T>&);      \
     template std::optional<T> sphere_rtg_discriminant<T>(const ray<T>&, const sphere<T>&, const interval<T>&); \
     template std::optional<T> sphere_rtg_stable<T>(const ray<T>&, const sphere<T>&, const interval<T>&);     \
-    template std::optional<T> sphere_compensated<T>(const ray<T>&, const sphere<T>&, const interval<T>&);    \
     template std::optional<T> sphere_mixed<T>(const ray<T>&, const sphere<T>&, const interval<T>&);          \
     template std::optional<plane_hit<T>> plane_direct<T>(const ray<T>&, const plane<T>&, const interval<T>&); \
     template std::optional<plane_hit<T>> plane_snapped<T>(const ray<T>&, const plane<T>&, const interval<T>&); \
@@ -46,7 +46,7 @@ const std::vector<sphere_formulation>& sphere_formulations() {
         RT_ENTRY(sphere_query, sphere_geometric, "geometric", "unit direction, distance of the centre from the ray"),
         RT_ENTRY(sphere_query, sphere_rtg_discriminant, "rtg_discriminant", "Hearn-Baker discriminant a(r^2 - |f - (h/a)d|^2)"),
         RT_ENTRY(sphere_query, sphere_rtg_stable, "rtg_stable", "Hearn-Baker discriminant + stable root pair (RTG ch. 7)"),
-        RT_ENTRY(sphere_query, sphere_compensated, "compensated", "exact f, FMA error-free c, f x d and discriminant"),
+        RT_ENTRY(sphere_query, sphere_compensated, "compensated", "chapter 07's solution: exact f, pairs for f x d, triple-precision c"),
         RT_ENTRY(sphere_query, sphere_mixed, "mixed", "float data in double, double data in double-double"),
     };
     return table;

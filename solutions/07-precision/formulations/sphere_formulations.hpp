@@ -27,7 +27,6 @@
 #pragma once
 
 #include "07-precision/error_free.hpp"
-#include "sphere_pieces.hpp"
 
 #include "common/interval.hpp"
 #include "common/ray.hpp"
@@ -147,74 +146,6 @@ std::optional<T> sphere_rtg_stable(const ray<T>& ray_, const sphere<T>& s, const
 }
 
 namespace detail {
-template <class T>
-bool sphere_inputs_valid(const ray<T>& ray_, const sphere<T>& s) {
-    return is_finite(ray_.origin) && is_finite(ray_.direction) && is_finite(s.center) &&
-           std::isfinite(s.radius) && s.radius > 0;
-}
-
-// Powers of two move numbers without rounding them. The compensated form
-// brings |f| and r near 1 and |d| near 1 so that products of four inputs,
-// and their error terms, neither overflow nor sink into the subnormals.
-// Inside a comfortable range nothing is scaled (the common case is fast).
-template <class T>
-int scale_exponent(T largest) {
-    // Four inputs multiply to 2^(4e) and the error terms sit 2^-48 (float)
-    // below that: |e| <= 16 keeps both inside float's normal range, and
-    // keeps Dekker's split (error_free.hpp) from overflowing.
-    constexpr int comfortable = sizeof(T) == 4 ? 16 : 200;
-    static const T top = std::ldexp(T(1), comfortable + 1), bottom = std::ldexp(T(1), -comfortable);
-    if (largest < top && largest >= bottom) return 0;  // the common case: no library call
-    return -std::ilogb(largest);
-}
-}  // namespace detail
-
-namespace detail {
-// 2^k t, for a root computed on scaled inputs. The root is within a few
-// ULPs of the exact one, so a result that overflows by at most 4 ULPs of
-// T's largest number is a root at the very top of the range (o at -M, C at
-// +M, r = M: t = M exactly), and is returned as that number.
-template <class T>
-T unscaled_root(T t, int k) {
-    const T y = std::ldexp(t, k);
-    constexpr T top = std::numeric_limits<T>::max();
-    if (std::isinf(y) && std::isfinite(t) &&
-        std::fabs(std::ldexp(t, k - 1)) <= top / 2 * (1 + 4 * std::numeric_limits<T>::epsilon()))
-        return std::copysign(top, t);
-    return y;
-}
-
-// c = f.f - r^2 from its exact pieces, in triple precision: the chapter 07
-// solution's step 3 (sphere_pieces.hpp; the solution holds its own copy, since a submission is one file).
-using sphere_pieces::exact_constant_term;
-
-// exact_constant_term for float data in double, kept out of line: only origins within
-// about 2^-28 of the surface need it.
-[[gnu::noinline, gnu::cold]] inline double exact_c_cold(const double_word<double> (&f)[3], double r2) {
-    return exact_constant_term(f, double_word<double>{r2, 0});
-}
-
-// exact_constant_term for the compensated form. Float's triple precision (72 bits) is
-// not enough when c is 2^-55 of f.f (a shadow ray leaving a sphere of radius
-// 1e6): float data sums its exact pieces in double instead (each piece is a
-// float, so converting them loses nothing).
-template <class T>
-T exact_c_of(const double_word<T> (&f)[3], double_word<T> r2) {
-    if constexpr (sizeof(T) == sizeof(float)) {
-        const double_word<double> fd[3] = {{double(f[0].hi), double(f[0].lo)},
-                                           {double(f[1].hi), double(f[1].lo)},
-                                           {double(f[2].hi), double(f[2].lo)}};
-        return static_cast<T>(exact_constant_term(fd, double_word<double>{double(r2.hi), double(r2.lo)}));
-    } else {
-        return exact_constant_term(f, r2);
-    }
-}
-}  // namespace detail
-
-template <class T>
-std::optional<T> sphere_compensated(const ray<T>& ray_, const sphere<T>& s, const interval<T>& range);
-
-namespace detail {
 // Rounds a double root to float; beyond the float range it becomes infinite
 // (and fails the range test) instead of an undefined conversion.
 inline float to_float(double t) {
@@ -222,96 +153,28 @@ inline float to_float(double t) {
     return std::fabs(t) <= top ? static_cast<float>(t) : std::copysign(infinity<float>, static_cast<float>(t));
 }
 
-// Float data, double-double arithmetic: the inputs convert exactly, and the
-// range is converted too, so the double answer is rounded to float once.
-inline std::optional<float> sphere_float_in_double_word(const ray<float>& ray_, const sphere<float>& s,
-                                                        const interval<float>& range) {
-    ray<double> r{convert<double>(ray_.origin), convert<double>(ray_.direction)};
-    sphere<double> sd{convert<double>(s.center), double(s.radius), s.material};
-    auto t = sphere_compensated<double>(r, sd, interval<double>{double(range.min), double(range.max)});
-    if (!t) return std::nullopt;
-    float tf = to_float(*t);
-    if (range.surrounds(tf)) return tf;
-    return std::nullopt;
-}
+// c = f.f - r^2 for float data from exact pieces (f = o - C by two_sum, the
+// squares split, the sum in triple precision): chapter 07's steps 4 and 3,
+// the reference solution's own code (chapter07_reference.cpp).
+double constant_term_of_floats(const vec3<float>& o, const sphere<float>& s);
 }  // namespace detail
 
-// 6. The compensated form: every quantity that cancels is carried as a
-// double-word (error_free.hpp), so it keeps twice the digits of T:
+// 6. The compensated form is chapter 07's reference solution,
+// intersect_sphere_robust (solutions/07-precision/robust_sphere.cpp, one
+// function per step of the lecture; compiled for the study by
+// chapter07_reference.cpp): every quantity that cancels is carried as a
+// pair (error_free.hpp), so it keeps twice the digits of the arithmetic,
+// which is double for float data and T otherwise:
 //   * f = o - C is exact (two_sum), so a ray origin 0.01 above a sphere of
 //     radius 10^6 does not lose its height before any arithmetic starts;
-//   * the perpendicular vector enters through the cross product f x d (by
-//     Lagrange's identity |f|^2 |d|^2 - (f.d)^2 = |f x d|^2, so the
-//     discriminant is a r^2 - |f x d|^2), each component a difference of
-//     exact products (two_prod: an FMA, or Dekker's product);
-//   * the discriminant is a double-word sum; c = f.f - r^2 is one too, and
-//     when it cancels more than 20 bits (an origin on or near the surface)
-//     it is summed again from its exact pieces (detail::exact_constant_term);
-//   * for float data, a discriminant that cancels more than 20 bits (a ray
-//     grazing a huge sphere) sends the test to double-double.
-// The roots come from the stable pair, so each is within a few ULPs. The
-// price is about fifteen times the plain form's time (see the study).
+//   * f and d are scaled by powers of two, so no square under- or overflows
+//     (a subnormal direction is a direction);
+//   * the discriminant is a r^2 - |f x d|^2 (Lagrange's identity), every
+//     product split exactly (two_prod), summed as pairs;
+//   * c = f.f - r^2 is summed from its exact pieces in triple precision.
+// The roots come from the stable pair, so each is within a few ULPs.
 template <class T>
-std::optional<T> sphere_compensated(const ray<T>& ray_, const sphere<T>& s, const interval<T>& range) {
-    using dw = double_word<T>;
-    if (!detail::sphere_inputs_valid(ray_, s)) return std::nullopt;
-    // o - C overflows when o and C lie near T's largest number on opposite
-    // sides: then o, C and r are quartered first (a power of two: exact, but
-    // for subnormal coordinates, which are negligible next to the others),
-    // and the quarter is undone with the other scaling, at the end.
-    const vec3<T>& o0 = ray_.origin;
-    const vec3<T>& C0 = s.center;
-    constexpr T quarter_above = std::numeric_limits<T>::max() / 4;
-    const bool quartered = std::max({std::fabs(o0.x), std::fabs(o0.y), std::fabs(o0.z), std::fabs(C0.x),
-                                     std::fabs(C0.y), std::fabs(C0.z), s.radius}) > quarter_above;
-    const int eq = quartered ? -2 : 0;
-    const T q4 = quartered ? T(0.25) : T(1);
-    const vec3<T> o = q4 * o0, C = q4 * C0;
-    dw f[3] = {two_sum(o.x, -C.x), two_sum(o.y, -C.y), two_sum(o.z, -C.z)};
-    T d[3] = {ray_.direction.x, ray_.direction.y, ray_.direction.z};
-    T r = q4 * s.radius;
-
-    T dmax = std::max({std::fabs(d[0]), std::fabs(d[1]), std::fabs(d[2])});
-    if (!(dmax > 0)) return std::nullopt;  // a zero direction meets nothing
-    T fmax = std::max({std::fabs(f[0].hi), std::fabs(f[1].hi), std::fabs(f[2].hi), r});
-    int ef = detail::scale_exponent(fmax), ed = detail::scale_exponent(dmax);
-    if (ef != 0) {
-        for (dw& x : f) x = scaled(x, ef);
-        r = std::ldexp(r, ef);
-    }
-    if (ed != 0)
-        for (T& x : d) x = std::ldexp(x, ed);
-
-    // Sums of squares cannot cancel: the cheaper same-sign addition will do.
-    dw a = add_same_sign(add_same_sign(two_prod(d[0], d[0]), two_prod(d[1], d[1])), two_prod(d[2], d[2]));
-    dw h = f[0] * d[0] + f[1] * d[1] + f[2] * d[2];
-    dw g[3] = {f[1] * d[2] - f[2] * d[1], f[2] * d[0] - f[0] * d[2], f[0] * d[1] - f[1] * d[0]};
-    dw r2 = two_prod(r, r);
-    dw ar2 = a * r2;
-    dw disc = ar2 - add_same_sign(add_same_sign(g[0] * g[0], g[1] * g[1]), g[2] * g[2]);
-    if (is_negative(disc)) return std::nullopt;
-    if constexpr (sizeof(T) == sizeof(float)) {
-        // A ray grazing a huge sphere: the discriminant is 2^-20 or less of
-        // its terms, so float-float (48 bits) leaves it fewer than 28 good
-        // bits, and the roots would lose ULPs. Only then, redo the test in
-        // double-double: the float inputs are exact in double.
-        if (disc.hi < ar2.hi * T(0x1p-20)) return detail::sphere_float_in_double_word(ray_, s, range);
-    }
-    // c as a double-word first; only when f.f and r^2 agree in more than
-    // 20 bits is it summed again from exact pieces (detail::exact_constant_term).
-    dw ff = add_same_sign(add_same_sign(f[0] * f[0], f[1] * f[1]), f[2] * f[2]);
-    dw cw = ff - r2;
-    T c = std::fabs(cw.hi) > ff.hi * T(0x1p-20) ? cw.value() : detail::exact_c_of(f, r2);
-
-    auto [t0, t1] = stable_roots(a.value(), h.value(), c, disc.value());
-    // Undo the scaling: |f + t d| = r became |2^(ef + eq) f + t' 2^ed d| =
-    // 2^(ef + eq) r, so t = t' 2^(ed - ef - eq).
-    if (ed != ef + eq) {
-        t0 = detail::unscaled_root(t0, ed - ef - eq);
-        t1 = detail::unscaled_root(t1, ed - ef - eq);
-    }
-    return nearest_in_range(t0, t1, range);
-}
+std::optional<T> sphere_compensated(const ray<T>& ray_, const sphere<T>& s, const interval<T>& range);
 
 namespace detail {
 // The roots of the stable pair, rounded to float once, the near one first:
@@ -356,25 +219,12 @@ inline std::optional<float> root_ahead(double a, double h, double c, double disc
     return std::nullopt;
 }
 
-// f x d for float data as double-words: with f = o - C, each component is
-// a sum of four products of two floats (g_x = o_y d_z - o_z d_y - C_y d_z +
-// C_z d_y), every product exact in double, added with two_sum.
-inline double_word<double> cross_component(float o1, float o2, float c1, float c2, float d1, float d2) {
-    const double_word<double> s1 = two_sum(double(o1) * d2, -(double(o2) * d1));
-    const double_word<double> s2 = two_sum(s1.hi, -(double(c1) * d2));
-    const double_word<double> s3 = two_sum(s2.hi, double(c2) * d1);
-    return fast_two_sum(s3.hi, (s1.lo + s2.lo) + s3.lo);
-}
-
 // c from exact pieces, for the rare origin that c_near_surface cannot
 // settle (within about 2^-46 of its terms of the surface, or overflowing in
-// float): f = o - C with the error of each difference (two_sum), then
-// exact_constant_term. Out of line and cold: the common path stays small.
+// float): chapter 07's constant term (constant_term_of_floats). Out of line
+// and cold: the common path stays small.
 [[gnu::noinline, gnu::cold]] inline double c_from_exact_pieces(const vec3<float>& o, const sphere<float>& s) {
-    const vec3<float>& C = s.center;
-    double_word<double> f[3];
-    for (int j = 0; j < 3; ++j) f[j] = two_sum(double(o[j]), -double(C[j]));
-    return exact_constant_term(f, double_word<double>{double(s.radius) * s.radius, 0});
+    return constant_term_of_floats(o, s);
 }
 
 // c = f.f - r^2 for the origins nearest the surface, where even
@@ -444,7 +294,7 @@ struct largest_axis_parts {
 // (out_of_range_sign: a c of that sign puts the root c/q outside the
 // range). Its usual case, f exact (lo = 0: the terms in lo vanish), is
 // c_near_surface_usual (below), inline in sphere_in_double; this version
-// runs for an inexact f and for sphere_grazing.
+// runs for an inexact f.
 [[gnu::noinline]] inline double c_near_surface(const vec3<float>& o, const sphere<float>& s, double out_of_range_sign) {
     const vec3<float>& C = s.center;
     const vec3<double> f = convert<double>(o) - convert<double>(C);
@@ -497,51 +347,13 @@ typedef double double2 __attribute__((vector_size(16)));
     return c_from_floats(o, s);
 }
 
-// A grazing ray: the discriminant cancelled more than 26 of double's 53
-// bits, too few left for float's 24. It is computed again in double-double
-// from exact pieces (a r^2 - |f x d|^2, every square error-free), which
-// decides hit or miss exactly enough for a tangent ray and leaves the
-// discriminant twice double's digits. Kept out of line (and marked cold) so
-// that the common path stays small.
-[[gnu::noinline, gnu::cold]] inline std::optional<float> sphere_grazing(const ray<float>& ray_, const sphere<float>& s,
-                                                                       const interval<float>& range,
-                                                                       double h) {
-    const vec3<float>& o = ray_.origin;
-    const vec3<float>& C = s.center;
-    const vec3<double> f = convert<double>(o) - convert<double>(C);
-    const vec3<float>& d = ray_.direction;
-    const double_word<double> g[3] = {cross_component(o.y, o.z, C.y, C.z, d.y, d.z),
-                                      cross_component(o.z, o.x, C.z, C.x, d.z, d.x),
-                                      cross_component(o.x, o.y, C.x, C.y, d.x, d.y)};
-    auto square = [](double_word<double> x) {
-        double_word<double> p = two_prod(x.hi, x.hi);
-        return fast_two_sum(p.hi, p.lo + 2 * x.hi * x.lo);
-    };
-    const double_word<double> gg = add_same_sign(add_same_sign(square(g[0]), square(g[1])), square(g[2]));
-    // a = d.d: each square of a float is exact in double, the sum as a double-word.
-    const double_word<double> a = add_same_sign(add_same_sign(double_word<double>{double(d.x) * d.x, 0},
-                                                              double_word<double>{double(d.y) * d.y, 0}),
-                                                double_word<double>{double(d.z) * d.z, 0});
-    const double r2 = double(s.radius) * s.radius;  // exact
-    const double_word<double> disc_w = a * r2 - gg;
-    if (is_negative(disc_w)) return std::nullopt;
-    const double disc = disc_w.value(), av = a.value();
-    const double ff = dot(f, f);
-    double c = ff - r2;
-    if (!(std::fabs(c) >= 0x1p-27 * ff))
-        c = c_near_surface(o, s, range.min >= 0 ? (h >= 0 ? 1.0 : -1.0) : 0.0);
-    const double q = -(h + std::copysign(std::sqrt(disc), h));
-    if (q == 0) return nearest_in_range(0.0f, 0.0f, range);  // tangent at the origin: t = 0 twice
-    return nearest_in_range(to_float(c / q), to_float(q / av), range);
-}
-
 // The discriminant as a r^2 - |f x d|^2 (Lagrange's identity: |f x d|^2 =
 // a f.f - h^2), which keeps its digits where h^2 - a c cancels (a far
 // sphere, a ray near tangency). It is trusted when it is at least 2^-26 of
 // a r^2 (its rounding error is a few 2^-53 of a r^2), or below -2^-40 a r^2
 // (a certain miss). Anything between is a ray within a hair of tangency:
-// *grazing is set, and the caller decides it in double-double
-// (sphere_grazing). NaN (an infinite direction) is a miss.
+// *grazing is set, and the caller hands the ray to chapter 07's robust
+// test (sphere_compensated), which decides it from exact pieces. NaN (an infinite direction) is a miss.
 inline double disc_by_cross(const vec3<double>& f, const vec3<double>& d, double a, double r2, bool* grazing) {
     const vec3<double> g = cross(f, d);
     const double ar2 = a * r2;
@@ -562,7 +374,7 @@ inline double disc_by_cross(const vec3<double>& f, const vec3<double>& d, double
 //     c_near_surface or c_from_floats for the rare origins it cannot settle;
 //   * the discriminant h^2 - a c, when a c is close to h^2 (a far sphere, a
 //     ray near tangency): a r^2 - |f x d|^2 instead (disc_by_cross), and
-//     double-double for a ray within a hair of tangency (sphere_grazing).
+//     chapter 07's test for a ray within a hair of tangency (sphere_compensated).
 // Whenever c < 0 (the origin inside: a sum of two positive terms) or
 // 2 a c <= h^2 (an origin near the surface, not near tangency), h^2 - a c
 // does not cancel; that is the path of shadow, reflection and refraction
@@ -629,7 +441,10 @@ inline double disc_by_cross(const vec3<double>& f, const vec3<double>& d, double
             disc = disc_by_cross(f, d, a, r2, &grazing);
         }
     }
-    if (grazing) return sphere_grazing(ray_, s, range, h);
+    // A grazing ray: the discriminant cancelled more than 26 of double's 53
+    // bits, too few left for float's 24. Chapter 07's test computes it again
+    // from exact pieces (out of line: the common path stays small).
+    if (grazing) return sphere_compensated(ray_, s, range);
     if (!(disc >= 0)) return std::nullopt;  // a miss, or NaN
     if (ahead_only) return root_ahead(a, h, c, disc, range);
     return near_root_first(a, h, c, disc, range);
