@@ -1,6 +1,17 @@
 // fast_path_spheres.hpp — part of fast_path.cpp (see fast_path_arrays.hpp):
 // the sphere kernels and their lane loops, for a packet's closest hits and
 // for one shadow ray's any hit.
+//
+// The "robust" lane kernel is not chapter 07's robust sphere
+// (solutions/07-precision/robust_sphere.cpp, which the formulation study
+// runs as "compensated"): it is the study's rtg_stable form (Hearn and
+// Baker's perpendicular foot, then the stable root pair) in T's own lanes,
+// with 1 / a multiplied instead of divided and c compensated by fma. Its
+// error grows like eps k (scene_plan.cpp's model), where chapter 07's test
+// is within a few ULPs everywhere at about twenty times the plain test's
+// cost (the study's table in chapter 07's README), in pairs of double for
+// float data: the plan picks this kernel, or double, where its error stays
+// within the bound.
 #pragma once
 #ifndef RT_FAST_PATH_PARTS
 #error "a part of fast_path.cpp: included by it, after its headers and its target pragma"
