@@ -895,22 +895,23 @@ def light_cone_and_lens():
     svg.text(30, 352, "pdf = 1 / (2π (1 − cos θmax)) per steradian", size=14)
     svg.text(30, 374, "1 − cos θmax = s / (1 + √(1 − s)), s = (r/d)²: no cancellation", size=14, colour=GUIDE)
     # right: the thin lens
-    g = Frame(520, 210, 55)
+    g = Frame(500, 200, 55)
     lens_h = 1.1
     svg.line(*g(0, -lens_h), *g(0, lens_h), VIEW, 4)
     svg.text(*g(-0.2, lens_h + 0.35), "lens (aperture)", size=13, colour=VIEW)
     focus = (5.5, 0.6)
     F = g(*focus)
     svg.line(*g(5.5, -1.8), *g(5.5, 1.8), GUIDE, 1.5, dash="6 4")
-    svg.text(*g(5.0, -2.2), "plane in focus", size=13, colour=GUIDE)
+    svg.text(*g(5.4, -2.2), "plane in focus", size=13, colour=GUIDE, anchor="end")
     for y0 in (-lens_h * 0.9, 0.0, lens_h * 0.7):
         svg.line(*g(0, y0), *F, RAY, 2, arrow=False)
         svg.dot(*g(0, y0), RAY, 4)
     svg.dot(*F, HIT, 5)
-    svg.text(F[0] + 8, F[1] - 8, "eye + f · d", size=13, colour=HIT)
+    svg.text(F[0] - 6, F[1] - 12, "eye + f · d (in focus)", size=13, colour=HIT, anchor="end")
     svg.text(*g(0.2, -1.6), "eye + offset", size=13, colour=RAY)
-    svg.text(*g(-0.4, -2.7), "direction = d − offset / f: every lens ray meets the point in focus;", size=13)
-    svg.text(*g(-0.4, -3.1), "offset = aperture · √u · (cos 2πv, sin 2πv): uniform over the disc", size=13)
+    svg.text(480, 352, "direction = d − offset / f: every lens ray", size=14)
+    svg.text(480, 374, "meets the point in focus at t = f;", size=14)
+    svg.text(480, 396, "offset = aperture · √u.x · (cos 2πu.y, sin 2πu.y)", size=14, colour=GUIDE)
     return svg
 
 
