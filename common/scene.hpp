@@ -18,13 +18,17 @@
 
 namespace rt {
 
-// How a surface responds to light: the parameters chapter 06 shades with.
+// How a surface responds to light: the parameters chapter 06 shades with,
+// and the two chapter 09 traces secondary rays for.
 struct material {
     color diffuse{0.8f, 0.8f, 0.8f};   // diffuse reflectance, per channel
     color specular{0.0f, 0.0f, 0.0f};  // highlight colour
     float shininess = 32.0f;           // highlight exponent: larger is a smaller, sharper highlight
     bool checker = false;              // planes: alternate diffuse and checker_color in unit squares
     color checker_color{0.2f, 0.2f, 0.2f};
+    color mirror{0.0f, 0.0f, 0.0f};    // chapter 09: the fraction reflected in the mirror direction, per channel
+    float ior = 0.0f;                  // chapter 09: > 0 makes the surface glass with this index of refraction
+                                       // (light split between reflection and refraction by Fresnel's equations)
 };
 
 struct point_light {

@@ -480,7 +480,7 @@ private:
         for (size_t i = 0; i < list->size(); ++i) {
             std::string p = "materials[" + std::to_string(i) + "]";
             const json& j = (*list)[i];
-            check_keys(j, p, {"name", "diffuse", "specular", "shininess", "checker"});
+            check_keys(j, p, {"name", "diffuse", "specular", "shininess", "checker", "mirror", "ior"});
             material m;
             std::string name;
             if (auto* n = member(j, "name")) {
@@ -497,6 +497,19 @@ private:
                 m.checker = true;
                 m.checker_color = read_color(*c, p + ".checker");
             }
+            if (auto* c = member(j, "mirror")) {
+                m.mirror = read_color(*c, p + ".mirror");
+                // A mirror reflects a fraction of the light: more than all of it
+                // would make every bounce brighter than the last.
+                for (int k = 0; k < 3; ++k)
+                    if (!(m.mirror[k] <= 1.0f))
+                        fail(p + ".mirror[" + std::to_string(k) + "]",
+                             "expected a fraction from 0 to 1, got " + where_.token_at(p + ".mirror[" + std::to_string(k) + "]"));
+            }
+            // An index below 1 would be a medium slower than vacuum; above 10 no
+            // transparent material exists (diamond is 2.42).
+            if (auto* n = member(j, "ior"))
+                m.ior = float(read_number_in(*n, p + ".ior", 1, false, 10, "an index of refraction from 1 to 10"));
             d.world.materials.push_back(m);
             d.material_names.push_back(name);
         }

@@ -116,10 +116,15 @@ template <class T, class F> void fields(sphere<T>& x, F&& f) { f(x.center, x.rad
 template <class T, class F> void fields(plane<T>& x, F&& f) { f(x.point, x.normal, x.material); }
 template <class T, class F> void fields(triangle<T>& x, F&& f) { f(x.a, x.b, x.c, x.material); }
 template <class T, class F> void fields(hit_record<T>& x, F&& f) { f(x.t, x.point, x.normal, x.object); }
-template <class F> void fields(material& x, F&& f) { f(x.diffuse, x.specular, x.shininess, x.checker, x.checker_color); }
+template <class F> void fields(material& x, F&& f) {
+    f(x.diffuse, x.specular, x.shininess, x.checker, x.checker_color, x.mirror, x.ior);
+}
 template <class T, class F> void fields(camera_frame<T>& x, F&& f) { f(x.eye, x.u, x.v, x.w); }
 template <class T, class F> void fields(pinhole_camera<T>& x, F&& f) { f(x.frame, x.width, x.height, x.half_height); }
 template <class F> void fields(point_light& x, F&& f) { f(x.position, x.intensity, x.radius); }
+template <class T, class F> void fields(scene<T>& x, F&& f) {
+    f(x.spheres, x.planes, x.triangles, x.materials, x.lights, x.ambient, x.background);
+}
 
 // Any callable does for the detection below (C++17 allows no lambda there).
 struct any_members {
