@@ -13,6 +13,7 @@
 
 #include "09-reflection/surface_error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -28,6 +29,7 @@ struct spawn_case {
     vec3<T> outward;   // unit normal on the outside
     vec3<T> incoming;  // arrives from outside: dot(incoming, outward) < 0
     std::function<int(const vec3<T>&)> side;  // exact: > 0 outside, < 0 inside, 0 on the surface
+    T size = 1;        // the object's size (radius, longest edge; 1 for a plane): what a "thin" shell is measured by
 };
 
 namespace cases_detail {
@@ -74,6 +76,7 @@ void add_sphere_cases(std::vector<spawn_case<T>>& out, const std::string& family
         c.incoming = arriving(g, c.outward, c.surface.point - eye, grazing);
         if (!(dot(c.incoming, c.outward) < T(0))) continue;
         c.side = [s](const vec3<T>& o) { return sphere_side(s, o); };
+        c.size = s.radius;
         out.push_back(c);
     }
 }
@@ -95,6 +98,7 @@ void add_triangle_cases(std::vector<spawn_case<T>>& out, const std::string& fami
         c.incoming = arriving(g, c.outward, c.surface.point - eye, grazing);
         if (!(dot(c.incoming, c.outward) < T(0))) continue;
         c.side = [facing](const vec3<T>& o) { return triangle_side(facing, o); };
+        c.size = std::max({length(tr.b - tr.a), length(tr.c - tr.a), length(tr.c - tr.b)});
         out.push_back(c);
     }
 }
@@ -156,7 +160,7 @@ std::vector<spawn_case<T>> stiff_spawn_cases(unsigned long long seed, int count)
 // exact surface may be from the computed point.
 template <class T>
 T reach_along(const ch09::surface_point<T>& p, const vec3<T>& n) {
-    return std::fabs(n.x) * p.error.x + std::fabs(n.y) * p.error.y + std::fabs(n.z) * p.error.z;
+    return dot(glm::abs(n), p.error);
 }
 
 // One float step of each component of p, along n: what the final rounding

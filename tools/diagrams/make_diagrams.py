@@ -753,6 +753,110 @@ def bvh():
     return svg
 
 
+# ---- chapter 09: mirror and glass, and where a secondary ray starts ----------------
+
+
+def reflect_refract():
+    svg = Svg(900, 430, "Reflection, refraction and total internal reflection")
+    svg.text(20, 30, "At a smooth surface: the mirror direction r, the transmitted direction t", size=17, weight="bold")
+    for panel, (ox, eta, degrees, title) in enumerate(((230, 1 / 1.5, 40.0, "air into glass (eta = 1 / 1.5)"),
+                                                       (670, 1.5, 50.0, "glass into air past the critical angle"))):
+        f = Frame(ox, 230, 60)
+        svg.text(ox, 62, title, size=15, anchor="middle", weight="bold")
+        dense_below = panel == 0
+        svg.polyline([f(-3.3, 0), f(3.3, 0), f(3.3, -2.6), f(-3.3, -2.6)], colour=None,
+                     fill="#dcebf7" if dense_below else "#f4f4f4", close=True)
+        if not dense_below:
+            svg.polyline([f(-3.3, 0), f(3.3, 0), f(3.3, 2.6), f(-3.3, 2.6)], colour=None, fill="#dcebf7", close=True)
+        svg.line(*f(-3.3, 0), *f(3.3, 0), SURFACE, 3)
+        svg.text(*f(-3.2, -0.4) if dense_below else f(-3.2, 0.3), "glass" if dense_below else "glass (above)",
+                 size=13, colour=SURFACE)
+        a = math.radians(degrees)
+        # The ray arrives from above in panel 0 (air), from above in panel 1 as well (inside the glass).
+        d = (math.sin(a), -math.cos(a))
+        start = (-2.4 * d[0], -2.4 * d[1])
+        svg.line(*f(*start), *f(0, 0), RAY, 2.8, arrow=True)
+        svg.text(*f(start[0] - 0.1, start[1] + 0.15), "d", size=18, colour=RAY, italic=True, weight="bold")
+        svg.line(*f(0, 0), *f(0, 2.3), NORMAL, 2.5, arrow=True)
+        svg.text(*f(0.12, 2.2), "n", size=18, colour=NORMAL, italic=True, weight="bold")
+        svg.line(*f(0, 0), *f(0, -2.3), GUIDE, 1.2, dash="4 4")
+        r = (d[0], -d[1])
+        svg.line(*f(0, 0), *f(2.4 * r[0], 2.4 * r[1]), HALF, 2.8, arrow=True)
+        svg.text(*f(2.4 * r[0] + 0.1, 2.4 * r[1]), "r = d − 2 (d·n) n" if panel == 0 else "r", size=14 if panel == 0 else 18,
+                 colour=HALF, italic=panel == 1, weight="bold" if panel == 1 else None)
+        # the angle of incidence
+        arc = 0.8
+        S, E = f(0, arc), f(-arc * math.sin(a), arc * math.cos(a))
+        svg.path(f"M{num(S[0])},{num(S[1])} A{num(arc * f.s)},{num(arc * f.s)} 0 0 0 {num(E[0])},{num(E[1])}", RAY, 1.5)
+        svg.text(*f(-0.45, 1.05), "θi", size=15, colour=RAY, italic=True)
+        sin_t = eta * math.sin(a)
+        if sin_t <= 1:
+            b = math.asin(sin_t)
+            t = (math.sin(b), -math.cos(b))
+            svg.line(*f(0, 0), *f(2.4 * t[0], 2.4 * t[1]), LIGHT, 2.8, arrow=True)
+            svg.text(*f(2.4 * t[0] + 0.1, 2.4 * t[1] - 0.1), "t", size=18, colour=LIGHT, italic=True, weight="bold")
+            S, E = f(0, -arc), f(arc * math.sin(b), -arc * math.cos(b))
+            svg.path(f"M{num(S[0])},{num(S[1])} A{num(arc * f.s)},{num(arc * f.s)} 0 0 0 {num(E[0])},{num(E[1])}",
+                     LIGHT, 1.5)
+            svg.text(*f(0.2, -1.15), "θt", size=15, colour=LIGHT, italic=True)
+            svg.text(ox, 400, "sin θt = eta sin θi: bent towards the normal", size=14, anchor="middle")
+        else:
+            svg.text(*f(0.3, -1.0), "no t: eta² (1 − cos² θi) > 1", size=14, colour=HIT)
+            svg.text(ox, 400, "past sin θc = 1 / eta all light is reflected", size=14, anchor="middle")
+    svg.text(20, 424, "t = eta u + (eta cos θi − cos θt) n,   cos θt = sqrt(1 − eta² (1 − cos² θi)),   "
+             "u = d / |d|,  eta = n_i / n_t", size=13, colour=GUIDE)
+    return svg
+
+
+def spawn_offset():
+    svg = Svg(900, 440, "Where a secondary ray starts")
+    svg.text(20, 30, "The error box of a hit point, pushed off the surface along n to the side the ray leaves by",
+             size=16, weight="bold")
+    f = Frame(300, 250, 70)
+    svg.polyline([f(-4, 0), f(4, 0), f(4, -2.2), f(-4, -2.2)], colour=None, fill="#dcebf7", close=True)
+    svg.line(*f(-4, 0), *f(4, 0), SURFACE, 3)
+    svg.text(*f(-3.9, -1.1), "inside (glass)", size=13, colour=SURFACE)
+    svg.text(*f(-3.9, 0.25), "outside", size=13, colour=SURFACE)
+    # the computed point and its error box (exaggerated)
+    p = (-0.4, -0.15)
+    e = (0.55, 0.45)
+    svg.rect(*f(p[0] - e[0], p[1] + e[1]), 2 * e[0] * f.s, 2 * e[1] * f.s, HIT, 1.6, fill="#f3c7c2", opacity=0.5)
+    svg.dot(*f(*p), HIT, 5)
+    svg.text(*f(p[0] - e[0] - 0.15, p[1] - 0.05), "computed point ± error", size=13, colour=HIT, anchor="end")
+    n = unit(0.35, 1.0)
+    reach = abs(n[0]) * e[0] + abs(n[1]) * e[1]
+    up = (p[0] + reach * n[0], p[1] + reach * n[1])
+    down = (p[0] - reach * n[0], p[1] - reach * n[1])
+    svg.line(*f(*p), *f(*up), NORMAL, 2.4, arrow=True)
+    svg.line(*f(*p), *f(*down), NORMAL, 2.4, arrow=True)
+    svg.text(*f(up[0] + 0.1, up[1] + 0.1), "+ dot(|n|, error) n", size=13, colour=NORMAL)
+    svg.text(*f(down[0] + 0.15, down[1] - 0.1), "− dot(|n|, error) n", size=13, colour=NORMAL)
+    # the reflected ray from the upper origin, the refracted one from the lower
+    svg.line(*f(*up), *f(up[0] + 2.6, up[1] + 1.6), HALF, 2.5, arrow=True)
+    svg.text(*f(up[0] + 2.2, up[1] + 1.75), "reflected: starts outside", size=13, colour=HALF)
+    svg.line(*f(*down), *f(down[0] + 1.9, down[1] - 1.6), LIGHT, 2.5, arrow=True)
+    svg.text(*f(down[0] + 0.75, down[1] - 1.0), "refracted: starts inside", size=13, colour=LIGHT, anchor="end")
+    # a thin shell: a second surface just below
+    y2 = -1.55
+    svg.line(*f(-4, y2), *f(4, y2), SURFACE, 2, dash="8 5")
+    svg.text(*f(1.75, y2 + 0.12), "a thin shell's far wall: the refracted", size=13, colour=SURFACE)
+    svg.text(*f(1.75, y2 - 0.3), "ray must still meet it", size=13, colour=SURFACE)
+    x = 640
+    svg.text(x, 90, "Not along the ray: a grazing", size=14)
+    svg.text(x, 110, "ray slides along the surface", size=14)
+    svg.text(x, 130, "and stays inside the error box.", size=14)
+    svg.text(x, 170, "Not a fixed epsilon: too small", size=14)
+    svg.text(x, 190, "at 1e6, too large for a 1e-4", size=14)
+    svg.text(x, 210, "thick pane.", size=14)
+    svg.text(x, 250, "The error box comes from the", size=14)
+    svg.text(x, 270, "rounding of putting the point", size=14)
+    svg.text(x, 290, "back on the surface: gamma(n)", size=14)
+    svg.text(x, 310, "times the sizes involved.", size=14)
+    svg.text(20, 428, "dot(|n|, error) is the box projected on the normal: how far along n the exact surface "
+             "may be from the computed point.", size=13, colour=GUIDE)
+    return svg
+
+
 # ---- chapter 10 -------------------------------------------------------------------
 
 def normals_figure():
@@ -927,6 +1031,8 @@ FIGURES = {
     "chapters/07-precision/figures/float_spacing.svg": float_spacing,
     "chapters/08-acceleration/figures/slabs.svg": slabs,
     "chapters/08-acceleration/figures/bvh.svg": bvh,
+    "chapters/09-reflection/figures/reflect_refract.svg": reflect_refract,
+    "chapters/09-reflection/figures/spawn_offset.svg": spawn_offset,
     "chapters/10-transforms/figures/normals.svg": normals_figure,
     "chapters/10-transforms/figures/instance_box.svg": instance_box_figure,
     "chapters/11-sampling/figures/sample_patterns.svg": sample_patterns,

@@ -44,6 +44,7 @@ KIT_DENY = ["*/__pycache__/*", "*.pyc", "*/.DS_Store",
             "/tools/grader/results/*",              # where and when the instructor's figures were measured
             "/tests/support/rpc/README.md",                # the judge/runner layer's page for contributors
             "/chapters/07-precision/worked_values.cpp",    # evaluates the stable root pair: step 2's answer
+            "/chapters/09-reflection/spawn_study.cpp",     # computes refract's cos_t^2 four ways (README, "Measured")
             "/chapters/10-transforms/rounding_study.cpp",  # its exact reference intersects spheres and triangles
             "/chapters/11-sampling/same_on_every_thread_count.cpp"]  # an instructor-side test (solutions only)
 PRIVATE = ["solutions", "tests/hidden", "tests/fixtures"]
