@@ -5,7 +5,7 @@
 //     (tests/public/ch09_cases.hpp), how often each offset rule starts a ray
 //     on the wrong side of the exact surface (a self-intersection: a
 //     reflected ray inside, a refracted one outside), and how often it
-//     starts beyond a thin shell (a second surface 1e-4 of the object's
+//     starts beyond a thin shell (a second surface 1e-3 of the object's
 //     size away: a pane, a coating, a bubble's wall). The rules:
 //       none         the computed point itself
 //       fixed 1e-4   1e-4 along the normal, on the ray's side
@@ -92,7 +92,7 @@ void offset_table(int points) {
             };
             const leaving rays[] = {{out, in_reflected, +1}, {out, c.incoming, -1},
                                     {-out, -in_reflected, -1}, {-out, -c.incoming, +1}};
-            const quad shell = quad(c.size) * quad(1e-4);
+            const quad shell = quad(c.size) * quad(1e-3);
             for (const leaving& l : rays) {
                 ++total;
                 for (rule r : rules) {
@@ -245,7 +245,7 @@ int main(int argc, char** argv) {
     }
     try {
         std::printf("1. Offset rules on stiff surface points: %% of spawned rays on the wrong side of the exact surface "
-                    "(self-intersection) / %% past a shell 1e-4 of the object's size away (skipped), 4 rays per point\n");
+                    "(self-intersection) / %% past a shell 1e-3 of the object's size away (skipped), 4 rays per point\n");
         std::printf("%-6s  %-36s %6s", "type", "family", "rays");
         for (rule r : rules) std::printf("  %-17s", rule_name(r));
         std::printf("\n");
