@@ -9,7 +9,9 @@ template <class T, class F> void fields(light_sample<T>& x, F&& f) {
     f(x.point, x.normal, x.direction, x.distance, x.pdf);
 }
 template <class T, class F> void fields(thin_lens<T>& x, F&& f) { f(x.aperture, x.focus_distance); }
-// The filter travels as one byte; a byte that names no filter is a broken message.
+#if defined(RT_RPC_JUDGE) || defined(RT_RPC_RUNNER)
+// The filter travels as one byte; a byte that names no filter is a broken message. (A placeholder
+// build, table_builds.hpp, sends nothing and has no rpc::writer.)
 inline void put(rpc::writer& w, filter_kind f) { rpc::put(w, std::uint8_t(f == filter_kind::box ? 0 : 1)); }
 inline void get(rpc::reader& r, filter_kind& f) {
     std::uint8_t byte = 0;
@@ -17,6 +19,7 @@ inline void get(rpc::reader& r, filter_kind& f) {
     if (byte > 1) throw rpc::protocol_error("a filter that is neither box nor tent");
     f = byte == 0 ? filter_kind::box : filter_kind::tent;
 }
+#endif
 }  // namespace rt::ch11
 
 #if RT_RPC_DEFINES_STUBS
