@@ -74,15 +74,15 @@ std::vector<unsigned char> file_bytes(const std::string& path) {
 
 // The comparison as a page (common/picture_page.hpp) next to the output: the reference, the
 // render and the difference side by side, a slider between the first two.
-void write_compare_page(const chapter_program& program, const image& img, const image& diff,
-                        const compare_result& r, const std::string& verdict, const program_options& opt) {
+void write_compare_page(const chapter_program& program, const image& img, const image& diff, bool same_size,
+                        const std::string& verdict, const program_options& opt) {
     picture_page page;
     page.title = program.id + " " + program.title + ": your render and the reference " + opt.compare;
     page.id = program.id;
     page.caption = verdict;
     page.reference_png = file_bytes(opt.compare);
     page.render_png = encode_png(img);
-    if (r.same_size) page.diff_png = encode_png(diff);
+    if (same_size) page.diff_png = encode_png(diff);
     const std::string path = page_path(opt.out);
     std::ofstream out(path, std::ios::binary);
     out << picture_page_html(page);
@@ -93,17 +93,26 @@ void write_compare_page(const chapter_program& program, const image& img, const 
 // --compare: prints the verdict and writes the comparison page; a picture past tolerance also
 // leaves its difference image next to the output. Returns true when the pictures match.
 bool compare_with_reference(const chapter_program& program, const image& img, const program_options& opt) {
-    const compare_tolerance tol;
     image diff;
-    const compare_result r = compare_images(img, read_png(opt.compare), tol, &diff);
-    const std::string verdict = std::string(r.within(tol) ? "match" : "MISMATCH") + ": " + r.summary(tol);
+    bool matched = false, same_size = false;
+    std::string figures;
+    if (program.noisy_picture) {
+        const noisy_tolerance tol;
+        const noisy_compare_result r = compare_noisy_images(img, read_png(opt.compare), tol, &diff);
+        matched = r.within(), same_size = r.same_size, figures = r.summary(tol);
+    } else {
+        const compare_tolerance tol;
+        const compare_result r = compare_images(img, read_png(opt.compare), tol, &diff);
+        matched = r.within(tol), same_size = r.same_size, figures = r.summary(tol);
+    }
+    const std::string verdict = std::string(matched ? "match" : "MISMATCH") + ": " + figures;
     std::printf("%s compare with %s: %s\n", program.id.c_str(), opt.compare.c_str(), verdict.c_str());
     try {  // a page that cannot be written must not hide the verdict
-        write_compare_page(program, img, diff, r, verdict, opt);
+        write_compare_page(program, img, diff, same_size, verdict, opt);
     } catch (const std::exception& e) {
         std::printf("%s comparison page not written: %s\n", program.id.c_str(), e.what());
     }
-    if (!r.within(tol) && r.same_size) {
+    if (!matched && same_size) {
         const std::string path = diff_path(opt.out);
         try {  // a picture that cannot be written must not hide the verdict
             write_png(diff, path);
@@ -112,7 +121,7 @@ bool compare_with_reference(const chapter_program& program, const image& img, co
             std::printf("%s difference image not written: %s\n", program.id.c_str(), e.what());
         }
     }
-    return r.within(tol);
+    return matched;
 }
 
 // v turned by `degrees` about the unit axis k (Rodrigues' formula; right-handed:
@@ -197,6 +206,7 @@ int run_chapter_program(int argc, char** argv, const chapter_program& program) {
         opt.spp = program.default_spp;
         app.add_option("--spp", opt.spp, "samples per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str();
     }
+    if (program.add_options) program.add_options(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

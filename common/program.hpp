@@ -33,6 +33,10 @@
 #include <functional>
 #include <string>
 
+namespace CLI {
+class App;
+}
+
 namespace rt {
 
 enum class precision { single, double_ };
@@ -101,6 +105,13 @@ struct chapter_program {
     // other shapes are left out, and the program says so.
     bool draws_planes = true;
     bool draws_triangles = true;
+    // True for a Monte Carlo picture (chapter 12): --compare judges it by
+    // statistics, tile by tile (image_compare.hpp, compare_noisy_images),
+    // not by a pixel threshold that noise alone would fail.
+    bool noisy_picture = false;
+    // Optional: adds the chapter's own options (chapter 12's --spp) to the
+    // command line before it is parsed; they are listed in --help with the rest.
+    std::function<void(CLI::App&)> add_options;
 };
 
 // Parses argv, renders, writes the PNG and prints the report line.

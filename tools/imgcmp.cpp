@@ -2,6 +2,12 @@
 //
 //   imgcmp ACTUAL.png EXPECTED.png [--threshold 8] [--fraction 0.005] [--diff DIFF.png]
 //          [--max-pixels 16777216]
+//   imgcmp ACTUAL.png EXPECTED.png --statistical [--tile 16] [--false-alarm 1e-6] [--diff DIFF.png]
+//
+// --statistical compares noisy (Monte Carlo) pictures: per tile, the mean
+// difference against its standard error, estimated from the tile's own
+// differences (common/image_compare.hpp, compare_noisy_images), so a correct
+// renderer passes on every run and a biased one fails.
 //
 // Prints one line with the figures. Exit status: 0 within tolerance, 1 past
 // it, 2 when a file cannot be read or the arguments are wrong.
@@ -51,6 +57,17 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0.0, 1.0))
         ->capture_default_str();
     app.add_option("--diff", diff_path, "write a difference image here");
+    bool statistical = false;
+    rt::noisy_tolerance noisy;
+    app.add_flag("--statistical", statistical,
+                 "noisy pictures: per tile, the mean difference against its estimated standard error");
+    app.add_option("--tile", noisy.tile, "--statistical: tile side in pixels")
+        ->check(CLI::Range(2, 4096))
+        ->capture_default_str();
+    app.add_option("--false-alarm", noisy.false_alarm,
+                   "--statistical: probability that two renders of the same expectation fail, per picture")
+        ->check(CLI::Range(1e-300, 0.5))
+        ->capture_default_str();
     long max_pixels = 4096L * 4096L;
     app.add_option("--max-pixels", max_pixels, "refuse (exit status 2) a picture claiming more pixels than this")
         ->check(CLI::PositiveNumber)
@@ -72,11 +89,20 @@ int main(int argc, char** argv) {
         rt::image actual = rt::read_png(actual_path);
         rt::image expected = rt::read_png(expected_path);
         rt::image diff;
-        rt::compare_result r = rt::compare_images(actual, expected, tol, diff_path.empty() ? nullptr : &diff);
-        if (!diff_path.empty() && r.same_size) rt::write_png(diff, diff_path);
-        std::printf("%s: %s\n", r.within(tol) ? "match" : "MISMATCH", r.summary(tol).c_str());
-        if (!diff_path.empty() && r.same_size) std::printf("difference image: %s\n", diff_path.c_str());
-        return r.within(tol) ? 0 : 1;
+        bool matched = false;
+        std::string figures;
+        if (statistical) {
+            const rt::noisy_compare_result r =
+                rt::compare_noisy_images(actual, expected, noisy, diff_path.empty() ? nullptr : &diff);
+            matched = r.within(), figures = r.summary(noisy);
+        } else {
+            const rt::compare_result r = rt::compare_images(actual, expected, tol, diff_path.empty() ? nullptr : &diff);
+            matched = r.within(tol), figures = r.summary(tol);
+        }
+        if (!diff_path.empty()) rt::write_png(diff, diff_path);
+        std::printf("%s: %s\n", matched ? "match" : "MISMATCH", figures.c_str());
+        if (!diff_path.empty()) std::printf("difference image: %s\n", diff_path.c_str());
+        return matched ? 0 : 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "imgcmp: %s\n", e.what());
         return 2;

@@ -1,0 +1,111 @@
+// path_scene.hpp — the world a path tracer walks through, and the plumbing
+// around chapter 12's exercise (nothing here is an exercise answer).
+//
+// A path_scene is plain data: spheres and planes (chapters 02 and 04), each
+// with a surface saying how it reflects (a Lambertian albedo) and what it
+// emits (radiance), a list of the spheres that are lights (the ones next-event
+// estimation samples), and the radiance of the background. Its closest hit is
+// chapter 03's loop over chapters 02 and 04's tests; a secondary ray leaves a
+// surface from chapter 06's offset origin.
+//
+// Units: colours are linear RGB. Emission and background are radiance (what
+// a camera pixel shows when it sees them directly); an albedo in [0, 1] is
+// the fraction of the light arriving at a point that leaves it again.
+#pragma once
+
+#include "02-sphere/sphere.hpp"
+#include "03-scene-loop/scene_loop.hpp"
+#include "04-plane/plane.hpp"
+#include "06-shading/shading.hpp"
+
+#include "common/object_dispatch.hpp"
+#include "common/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+namespace rt::ch12 {
+
+template <class T>
+inline constexpr T pi = T(3.14159265358979323846);
+
+// How one surface reflects and emits.
+struct surface {
+    color albedo{0.0f};    // Lambertian reflectance, each channel in [0, 1]
+    color emission{0.0f};  // emitted radiance, the same in every direction
+};
+
+template <class T>
+struct path_scene {
+    scene<T> geometry;              // spheres and planes; each shape's `material` indexes `surfaces`
+    std::vector<surface> surfaces;
+    std::vector<int> lights;        // indices into geometry.spheres: the sphere lights NEE samples
+    color background{0.0f};         // radiance of a ray that leaves the scene
+};
+
+// A ray's closest hit and the surface there.
+template <class T>
+struct surface_hit {
+    hit_record<T> hit;  // hit.normal is unit and faces the ray (turned towards its origin)
+    surface material;
+};
+
+// The closest hit of r in range, through chapter 03's loop (chapters 02 and 04
+// answer for each shape). The normal is turned to face the ray: a diffuse
+// surface reflects on the side it is seen from.
+template <class T>
+std::optional<surface_hit<T>> closest_surface(const path_scene<T>& s, const ray<T>& r, const interval<T>& range) {
+    const ch03::object_intersector<T> intersect =
+        object_dispatch(s.geometry, ch02::intersect_sphere<T>, ch04::intersect_plane<T>).intersector();
+    const std::optional<hit_record<T>> hit = ch03::closest_hit(s.geometry.object_count(), intersect, r, range);
+    if (!hit) return std::nullopt;
+    surface_hit<T> out{*hit, {}};
+    if (dot(out.hit.normal, r.direction) > T(0)) out.hit.normal = -out.hit.normal;
+    const object_ref o = locate(s.geometry, hit->object);
+    const int m = o.kind == shape_kind::sphere ? s.geometry.spheres[o.index].material : s.geometry.planes[o.index].material;
+    out.material = s.surfaces.at(size_t(m));
+    return out;
+}
+
+// Whether object number `object` is one of the scene's sphere lights.
+template <class T>
+bool is_light(const path_scene<T>& s, int object) {
+    return std::find(s.lights.begin(), s.lights.end(), object) != s.lights.end();
+}
+
+// An orthonormal frame (t, b, n) around a unit normal n, without a branch on
+// a "not parallel" helper vector: Duff et al., "Building an Orthonormal Basis,
+// Revisited" (JCGT 2017). Every sampling function of the chapter builds its
+// local directions in this frame, so two correct solutions agree to rounding.
+template <class T>
+struct tangent_frame {
+    vec3<T> t, b, n;
+    explicit tangent_frame(const vec3<T>& unit_normal) : n(unit_normal) {
+        const T sign = std::copysign(T(1), n.z);
+        const T a = T(-1) / (sign + n.z);
+        const T c = n.x * n.y * a;
+        t = vec3<T>(T(1) + sign * n.x * n.x * a, sign * c, -sign * n.x);
+        b = vec3<T>(c, sign + n.y * n.y * a, -n.y);
+    }
+    // local (x, y, z) -> world: x along t, y along b, z along n
+    vec3<T> to_world(T x, T y, T z) const { return x * t + y * b + z * n; }
+};
+
+// The worked example of the lecture: a direction drawn uniformly over the
+// hemisphere around `normal` (unit), from u1, u2 in [0, 1): z = cos(theta) =
+// 1 - u1 is uniform in (0, 1], phi = 2 pi u2. Its density is 1 / (2 pi) per
+// steradian, whatever the direction. Chapter 12's exercise is the cosine-
+// weighted version.
+template <class T>
+vec3<T> uniform_hemisphere(const vec3<T>& normal, T u1, T u2) {
+    const T z = T(1) - u1;
+    const T r = std::sqrt(std::max(T(0), T(1) - z * z));
+    const T phi = T(2) * pi<T> * u2;
+    return tangent_frame<T>(normal).to_world(r * std::cos(phi), r * std::sin(phi), z);
+}
+template <class T>
+inline constexpr T uniform_hemisphere_pdf = T(1) / (T(2) * pi<T>);
+
+}  // namespace rt::ch12
