@@ -5,6 +5,8 @@
 #     EXERCISES unit_sphere.cpp   # the files a student edits (same names in solutions/NN-name/)
 #     PROGRAM   main.cpp          # renders the chapter's scene
 #     DEPENDS   01 02)            # earlier chapters whose exercises this one calls
+#   NOISY_PICTURE                 # optional: the picture is a Monte Carlo estimate, so the grader's
+#                                 # imgcmp compares it by statistics (--statistical, common/image_compare.hpp)
 #
 # makes, for chapter NN in chapters/NN-name/:
 #   chNN_student     library of the student's exercise files (stubs until filled in)
@@ -150,7 +152,7 @@ function(rt_json_list out)
   set(${out} "[${joined}]" PARENT_SCOPE)
 endfunction()
 
-function(rt_chapter_description id number folder title chapter_dir side exercises depends)
+function(rt_chapter_description id number folder title chapter_dir side exercises depends noisy)
   rt_json_list(exercises_json ${exercises})
   rt_json_list(depends_json ${depends})
   set(targets "")
@@ -179,7 +181,8 @@ function(rt_chapter_description id number folder title chapter_dir side exercise
   \"depends\": ${depends_json},
 ${targets}  \"program\": \"$<TARGET_FILE:${id}>\",
 ${solution_program}  \"student_library\": \"$<TARGET_FILE:${id}_student>\",
-  \"reference\": \"${reference}\"
+  \"reference\": \"${reference}\",
+  \"noisy_picture\": ${noisy}
 }
 ")
 endfunction()
@@ -200,7 +203,7 @@ function(rt_chapter_objects id target support)
 endfunction()
 
 function(rt_chapter number)
-  cmake_parse_arguments(PARSE_ARGV 1 CH "" "TITLE;PROGRAM" "EXERCISES;DEPENDS")
+  cmake_parse_arguments(PARSE_ARGV 1 CH "NOISY_PICTURE" "TITLE;PROGRAM" "EXERCISES;DEPENDS")
   get_filename_component(folder "${CMAKE_CURRENT_SOURCE_DIR}" NAME)
   set(id "ch${number}")
   string(REGEX REPLACE "^[0-9][0-9]-" "" short_name "${folder}")
@@ -305,8 +308,13 @@ function(rt_chapter number)
 
   rt_chapter_judge(${id} "${chapter_dir}" "${CH_DEPENDS}" "${dependency_libs}")
 
+  if(CH_NOISY_PICTURE)
+    set(noisy true)
+  else()
+    set(noisy false)
+  endif()
   rt_chapter_description(${id} "${number}" "${folder}" "${CH_TITLE}" "${chapter_dir}" "${side}"
-                         "${CH_EXERCISES}" "${CH_DEPENDS}")
+                         "${CH_EXERCISES}" "${CH_DEPENDS}" ${noisy})
 
   # On a solution build, check the untouched student side as well: it must
   # compile, link, and fail with "not implemented yet", never crash or hang.

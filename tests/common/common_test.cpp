@@ -17,6 +17,7 @@
 #include <atomic>
 #include <cstdio>
 #include <limits>
+#include <random>
 #include <stdexcept>
 #include <string>
 
@@ -279,4 +280,49 @@ TEST_CASE("chapter scenes: built in and named after their file and they parse") 
     CHECK(ch03.source == "scenes/ch03-overlapping-spheres.json");
     CHECK(parse_scene(ch03.text, ch03.source).world.spheres.size() == 5);
     CHECK_THROWS_AS(chapter_scene_file("ch99"), std::invalid_argument);
+}
+
+namespace {
+// A noisy picture: every pixel the mean of `samples` draws of a value whose
+// expectation is the smooth image `level` (times `bias`), as a path tracer's
+// pixel is. Fixed seeds: the same pictures on every run.
+rt::image noisy_picture(unsigned seed, float bias, int samples = 8) {
+    std::mt19937 gen(seed);
+    std::exponential_distribution<float> draw(1.0f);  // mean 1, heavy right tail like fireflies
+    rt::image img(96, 80);
+    for (int row = 0; row < img.height; ++row)
+        for (int col = 0; col < img.width; ++col) {
+            const float level = 0.05f + 0.4f * float(col) / float(img.width) + 0.2f * float(row % 17) / 17.0f;
+            rt::color sum(0.0f);
+            for (int k = 0; k < samples; ++k) sum += rt::color(draw(gen), draw(gen), draw(gen)) * level * bias;
+            img.at(col, row) = sum / float(samples);
+        }
+    return img;
+}
+}  // namespace
+
+TEST_CASE("compare_noisy_images: two draws of one expectation match, a biased one does not") {
+    const rt::noisy_tolerance tol;
+    const rt::image reference = noisy_picture(1000, 1.0f);
+    for (unsigned seed = 1; seed <= 20; ++seed) {
+        const rt::noisy_compare_result r = rt::compare_noisy_images(noisy_picture(seed, 1.0f), reference, tol);
+        INFO("seed " << seed << ": " << r.summary(tol));
+        CHECK(r.within());
+    }
+    for (float bias : {0.9f, 1.1f}) {
+        const rt::noisy_compare_result r = rt::compare_noisy_images(noisy_picture(7, bias), reference, tol);
+        INFO("expectation times " << bias << ": " << r.summary(tol));
+        CHECK_FALSE(r.within());
+    }
+    // A bias in one tile only: found by that tile, not by the whole picture's mean.
+    rt::image local = noisy_picture(8, 1.0f);
+    for (int row = 32; row < 48; ++row)
+        for (int col = 48; col < 64; ++col) local.at(col, row) *= 1.5f;
+    const rt::noisy_compare_result r = rt::compare_noisy_images(local, reference, tol);
+    INFO(r.summary(tol));
+    CHECK(r.tiles_past >= 1);
+    CHECK_FALSE(r.within());
+    INFO("identical pictures match; a constant offset (no noise to explain it) does not");
+    CHECK(rt::compare_noisy_images(reference, reference, tol).within());
+    CHECK(std::fabs(rt::two_sided_normal_threshold(0.05) - 1.959964) < 1e-5);
 }

@@ -149,7 +149,7 @@ TEST_CASE_TEMPLATE("hidden: a white furnace returns its radiance", T, RT_SCALARS
 
 TEST_CASE_TEMPLATE("hidden: next-event estimation counts each light once", T, RT_SCALARS) {
     const path_scene<T> furnace = white_furnace<T>(2.0f, true);
-    const ray<T> r{vec3<T>(T(0.2), T(-0.6), T(5)), vec3<T>(T(0.8), T(0.65), T(-5))};
+    const ray<T> r{vec3<T>(T(-0.6), T(2.2), T(5)), vec3<T>(T(-0.5), T(-1.3), T(-4.8))};  // the left sphere's top
     for (bool cosine : {true, false}) {
         path_settings how;
         how.cosine_sampling = cosine;
@@ -174,9 +174,11 @@ TEST_CASE_TEMPLATE("hidden: energy never grows along a path", T, RT_SCALARS) {
 
 TEST_CASE_TEMPLATE("hidden: next-event estimation and bouncing agree, shadows included", T, RT_SCALARS) {
     const path_scene<T> box = cornell_box<T>();
-    // Towards the floor beside the right sphere (partly in its shadow) and towards the back wall.
+    // Towards the floor beside the right sphere, towards the back wall, and onto the floor in the
+    // left sphere's shadow (the light hidden behind the sphere).
     const std::vector<ray<T>> rays = {{vec3<T>(T(0), T(1), T(3.3)), vec3<T>(T(0.28), T(-0.55), T(-1))},
-                                      {vec3<T>(T(0), T(1), T(3.3)), vec3<T>(T(-0.1), T(0.05), T(-1))}};
+                                      {vec3<T>(T(0), T(1), T(3.3)), vec3<T>(T(-0.1), T(0.05), T(-1))},
+                                      {vec3<T>(T(0), T(1), T(3.3)), vec3<T>(T(-0.45), T(-1), T(-3.35))}};
     for (const ray<T>& r : rays) {
         path_settings nee, bounce;
         bounce.next_event = false;

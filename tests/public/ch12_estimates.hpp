@@ -91,7 +91,7 @@ estimate path_estimate(const path_scene<T>& s, const ray<T>& r, const path_setti
 // `radiance` everywhere inside (L = E + a L gives L = E / (1 - a)), and inside
 // it two spheres of albedo 1, 0.4 apart, that emit nothing. A correct path
 // tracer sees `radiance` in every direction: the spheres vanish. With
-// with_light, a small sphere light of that same radiance (albedo 0) hangs
+// with_light, a large sphere light of that same radiance (albedo 0) hangs
 // above them, and next-event estimation samples it: the world is unchanged.
 template <class T>
 path_scene<T> white_furnace(float radiance, bool with_light) {
@@ -101,7 +101,7 @@ path_scene<T> white_furnace(float radiance, bool with_light) {
                           {vec3<T>(T(-1.2), T(0), T(0)), T(1), 1},
                           {vec3<T>(T(1.2), T(0), T(0)), T(1), 1}};
     if (with_light) {
-        s.geometry.spheres.push_back({vec3<T>(T(0), T(2.5), T(0)), T(0.5), 2});
+        s.geometry.spheres.push_back({vec3<T>(T(0), T(3), T(0)), T(1.5), 2});
         s.lights = {3};
     }
     return s;
@@ -112,6 +112,12 @@ path_scene<T> white_furnace(float radiance, bool with_light) {
 template <class T>
 ray<T> furnace_view() {
     return {vec3<T>(T(0), T(0.5), T(6)), vec3<T>(T(0.45), T(-0.2), T(-6))};
+}
+
+// A ray onto the top of the right sphere, which sees much of the furnace's light.
+template <class T>
+ray<T> furnace_view_from_above() {
+    return {vec3<T>(T(0.5), T(2), T(5)), vec3<T>(T(0.7), T(-1.1), T(-4.7))};
 }
 
 }  // namespace rt::test::ch12

@@ -153,7 +153,7 @@ TEST_CASE_TEMPLATE("white furnace with a light: next-event estimation counts the
     const path_scene<T> furnace = white_furnace<T>(1.0f, true);
     path_settings how;
     how.next_event = true;
-    const estimate e = path_estimate(furnace, furnace_view<T>(), how, 1500);
+    const estimate e = path_estimate(furnace, furnace_view_from_above<T>(), how, 1500);
     INFO(describe_estimate(e) << "; the light's radiance equals the world's, so the answer stays 1: more means the "
          "light is counted twice (by its sample and again when a bounce hits it)");
     CHECK(std::fabs(e.mean - 1.0) <= 5 * e.standard_error + 1e-4);

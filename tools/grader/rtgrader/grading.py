@@ -748,8 +748,11 @@ class Grader:
         make_dir(scratch, user, 0o700)
         imgcmp = os.path.join(self.tree.build, "bin", "imgcmp")
         limits = Limits(wall_seconds=60, cpu_seconds=60, memory_bytes=1024 * MiB, file_bytes=64 * MiB, processes=8)
+        # A Monte Carlo picture (chNN.json's noisy_picture) is compared by statistics: per tile, the mean
+        # difference against its standard error (common/image_compare.hpp), never a pixel threshold.
+        statistical = ["--statistical"] if ch.get("noisy_picture") else []
         outcome = sandbox.run([imgcmp, os.path.join(pictures, "render.png"), os.path.join(pictures, "reference.png"),
-                               "--diff", os.path.join(scratch, "diff.png")],
+                               "--diff", os.path.join(scratch, "diff.png")] + statistical,
                               limits=limits, log_path=os.path.join(logs, "imgcmp"), user=user,
                               inputs=[imgcmp, pictures], scratch=scratch, private_root=self._per.work)
         figures = "\n".join(line for line in outcome.output.strip().splitlines()
