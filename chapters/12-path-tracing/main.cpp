@@ -31,7 +31,6 @@ namespace {
 using namespace rt;
 
 struct chapter_options {
-    int spp = 16;
     std::uint64_t seed = 1;
     std::string estimator = "nee";
     std::string sampling = "cosine";
@@ -56,7 +55,7 @@ image render_box(const program_options& opt, long& rays) {
     image img = render(opt.width, opt.height, [&](int col, int row) {
         ch12::pixel_random random(chosen.seed, std::uint64_t(row) * std::uint64_t(opt.width) + std::uint64_t(col));
         color sum(0.0f);
-        for (int k = 0; k < chosen.spp; ++k) {
+        for (int k = 0; k < opt.spp; ++k) {
             // A point drawn in the pixel's square: x right, y up, as camera.hpp's pixel centre.
             const T x = (T(col) + random.uniform<T>()) / T(opt.width) * T(2) - T(1);
             const T y = T(1) - (T(row) + random.uniform<T>()) / T(opt.height) * T(2);
@@ -65,9 +64,9 @@ image render_box(const program_options& opt, long& rays) {
             const ray<T> r{camera.frame.eye, on_plane};
             sum += ch12::path_radiance(box, r, camera_range, random.path_numbers<T>(max_vertices), settings);
         }
-        return sum / float(chosen.spp);
+        return sum / float(opt.spp);
     });
-    rays = long(opt.width) * opt.height * chosen.spp;  // paths, not rays: the report's figure is paths/s
+    rays = long(opt.width) * opt.height * opt.spp;  // paths, not rays: the report's figure is paths/s
     return img;
 }
 
@@ -79,10 +78,10 @@ int main(int argc, char** argv) {
     program.title = "path tracing";
     program.default_width = 160;
     program.default_height = 160;
+    program.default_spp = 16;  // --spp N (common/program.hpp)
     program.noisy_picture = true;
     program.render = rt::by_precision(render_box<float>, render_box<double>);
     program.add_options = [](CLI::App& app) {
-        app.add_option("--spp", chosen.spp, "paths per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str();
         app.add_option("--seed", chosen.seed, "seed of every pixel's random stream")->capture_default_str();
         app.add_option("--estimator", chosen.estimator, "nee: sample the light at every bounce; bounce: only by hitting it")
             ->check(CLI::IsMember({"nee", "bounce"}))

@@ -5,10 +5,13 @@
 // uniformly inside that cone has the density 1 / (2 pi (1 - cos theta_max))
 // per steradian, and every direction drawn meets the sphere: no sample is
 // wasted on a direction that misses the light (the lecture, "Next-event
-// estimation"). Chapter 11 derives this mapping; chapter 12 calls it.
+// estimation"). Chapter 11's sample_sphere_light draws it (its exercise);
+// this file turns its answer into what chapter 12's light sample needs.
 #pragma once
 
 #include "path_scene.hpp"
+
+#include "11-sampling/sampling.hpp"
 
 namespace rt::ch12 {
 
@@ -21,32 +24,6 @@ struct light_sample {
     int object = -1;             // the light's object number: the direction is unblocked when
                                  // the closest hit along it is this object
 };
-
-// A direction from `point` into the cone that sphere light `s` subtends, from
-// u1, u2 in [0, 1). A point inside the sphere (or on it) gets no sample (pdf 0).
-template <class T>
-light_sample<T> sample_sphere_light(const sphere<T>& s, const color& radiance, int object, const vec3<T>& point,
-                                    T u1, T u2) {
-    light_sample<T> out;
-    const vec3<T> to_center = s.center - point;
-    const T d = length(to_center);
-    if (!(d > s.radius)) return out;
-    const T sin2_max = (s.radius / d) * (s.radius / d);
-    const T cos_max = std::sqrt(std::max(T(0), T(1) - sin2_max));
-    // 1 - cos(theta_max) written without the cancellation of two numbers near 1
-    // (a small, far light: sin2_max = 1e-8 would leave 1 - cos_max = 0 in float).
-    const T one_minus_cos_max = sin2_max / (T(1) + cos_max);
-    const T one_minus_cos = u1 * one_minus_cos_max;  // cos(theta) uniform in [cos_max, 1]
-    const T cos_theta = T(1) - one_minus_cos;
-    const T sin_theta = std::sqrt(std::max(T(0), one_minus_cos * (T(2) - one_minus_cos)));
-    const T phi = T(2) * pi<T> * u2;
-    out.direction = normalize(tangent_frame<T>(to_center / d).to_world(sin_theta * std::cos(phi),
-                                                                       sin_theta * std::sin(phi), cos_theta));
-    out.pdf = T(1) / (T(2) * pi<T> * one_minus_cos_max);
-    out.radiance = radiance;
-    out.object = object;
-    return out;
-}
 
 // Whether the light sample is seen from `origin` (a point already moved off
 // its surface): the first thing a ray along the sample's direction meets is
@@ -62,7 +39,14 @@ template <class T>
 light_sample<T> sample_light(const path_scene<T>& s, size_t k, const vec3<T>& point, T u1, T u2) {
     const int index = s.lights.at(k);
     const sphere<T>& light = s.geometry.spheres.at(size_t(index));
-    return sample_sphere_light(light, s.surfaces.at(size_t(light.material)).emission, index, point, u1, u2);
+    light_sample<T> out;  // pdf 0: no sample, when the point is on or inside the light
+    const std::optional<ch11::light_sample<T>> drawn = ch11::sample_sphere_light(light, point, ch11::vec2<T>(u1, u2));
+    if (!drawn) return out;
+    out.direction = drawn->direction;
+    out.pdf = drawn->pdf;
+    out.radiance = s.surfaces.at(size_t(light.material)).emission;
+    out.object = index;
+    return out;
 }
 
 }  // namespace rt::ch12
