@@ -51,6 +51,12 @@ scene_description read_scene(const chapter_program& program, const std::string& 
         std::printf("%s: rendering the scene file %s\n", program.id.c_str(), path.c_str());
     }
     leave_out_undrawn_shapes(program, d.world);
+    if (!program.draws_instances && !d.instances.empty()) {
+        std::fprintf(stderr, "%s: the scene's %zu instance%s left out (chapter 10)\n", program.id.c_str(),
+                     d.instances.size(), d.instances.size() > 1 ? "s are" : " is");
+        d.instances.clear();
+        d.objects.clear();
+    }
     return d;
 }
 

@@ -105,6 +105,7 @@ struct chapter_program {
     // other shapes are left out, and the program says so.
     bool draws_planes = true;
     bool draws_triangles = true;
+    bool draws_instances = false;  // chapter 10 on: a scene file's "instances" (else left out, and said so)
     // True for a Monte Carlo picture (chapter 12): --compare judges it by
     // statistics, tile by tile (image_compare.hpp, compare_noisy_images),
     // not by a pixel threshold that noise alone would fail.

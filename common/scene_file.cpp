@@ -88,6 +88,9 @@ public:
         fail_at(it == keys_.end() ? value_at(path) : it->second, path, problem);
     }
 
+    // Line and column of the value at path (of the document when unknown).
+    std::pair<int, int> position(const std::string& path) const { return line_and_column(text_, value_at(path)); }
+
     // Throws the error for the first number too large for a double, if any.
     void fail_at_overflowing_number() const {
         std::string first;
@@ -232,29 +235,46 @@ std::string format_vector(const vec3d& v) {
     return s.str();
 }
 
+// The scene files being read, outermost first: a file placed by one of them
+// (an instance's "scene") is read with the same chain, so a file that places
+// itself, directly or through others, is found.
+struct file_chain {
+    std::vector<std::string> files;  // canonical paths
+    std::vector<std::string> shown;  // as written, for messages
+};
+
+scene_description parse_in_chain(const std::string& text, const std::string& source, file_chain& chain);
+
+// The keys that say what an object holds, in "objects" and in an instance.
+const std::vector<std::string> definition_keys = {"spheres", "planes", "triangles", "meshes", "instances", "generate",
+                                                  "scene"};
+
+// Instances nested deeper than this are refused: the renderers walk them by
+// recursion, and no scene needs more (the level-12 sphereflake is 13 deep).
+constexpr int max_nesting = 64;
+
 // Checks one JSON document against the scene format and builds the scene.
 class reader {
 public:
-    reader(const std::string& text, const std::string& source, const json& doc)
-        : source_(source), doc_(doc), where_(text, source) {}
+    reader(const std::string& text, const std::string& source, const json& doc, file_chain& chain)
+        : source_(source), doc_(doc), where_(text, source), chain_(chain) {}
 
     scene_description read() {
         scene_description d;
         d.source = source_;
         if (!doc_.is_object()) fail("", "expected the scene to be a JSON object { ... }, got " + describe(doc_, ""));
         check_keys(doc_, "", {"description", "camera", "background", "ambient", "materials", "spheres", "planes",
-                              "triangles", "meshes", "lights", "generate"});
+                              "triangles", "meshes", "lights", "generate", "objects", "instances"});
         if (auto* j = member(doc_, "description"); j && !j->is_string())
             fail("description", "expected a string, got " + describe(*j, "description"));
         d.camera = read_camera(required(doc_, "", "camera", "an object describing the camera"), "camera");
         if (auto* j = member(doc_, "background")) d.world.background = read_color(*j, "background");
         if (auto* j = member(doc_, "ambient")) d.world.ambient = read_color(*j, "ambient");
         read_materials(d);
-        read_list(d, "spheres", [&](const json& j, const std::string& p) { read_sphere(d, j, p); });
-        read_list(d, "planes", [&](const json& j, const std::string& p) { read_plane(d, j, p); });
-        read_list(d, "triangles", [&](const json& j, const std::string& p) { read_triangle(d, j, p); });
-        read_list(d, "meshes", [&](const json& j, const std::string& p) { read_mesh(d, j, p); });
-        read_list(d, "lights", [&](const json& j, const std::string& p) {
+        own_materials_ = int(d.world.materials.size());
+        object_definition top;
+        read_shapes(d, doc_, "", top);
+        read_list(doc_, "", "lights", [&](const json& j, const std::string& p) {
             check_keys(j, p, {"position", "intensity", "radius"});
             point_light light;
             light.position = read_point(required(j, p, "position", "a point [x, y, z]"), p + ".position");
@@ -264,7 +284,14 @@ public:
                                               "a radius >= 0 (0: a point light; > 0: a sphere light, chapter 11)");
             d.world.lights.push_back(light);
         });
-        if (auto* g = member(doc_, "generate")) read_generate(d, *g);  // last: may pass max_objects
+        read_named_objects(d);
+        read_list(doc_, "", "instances", [&](const json& j, const std::string& p) { read_instance(d, j, p, top); });
+        if (auto* g = member(doc_, "generate")) read_generate(d, *g, "generate", top);  // last: may pass max_objects
+        d.world.spheres = std::move(top.spheres);
+        d.world.planes = std::move(top.planes);
+        d.world.triangles = std::move(top.triangles);
+        d.instances = std::move(top.instances);
+        check_nesting(d);
         return d;
     }
 
@@ -272,6 +299,12 @@ private:
     const std::string& source_;
     const json& doc_;
     locator where_;
+    file_chain& chain_;
+    int own_materials_ = 0;             // this file's materials; those of files it places follow
+    size_t written_ = 0;                // shapes written in the file (generated ones are not limited)
+    std::map<std::string, int> named_;  // "objects" read so far: name -> index in scene_description::objects
+    std::vector<std::string> resolving_;  // the named objects being read, outermost first (to find a cycle)
+    std::map<std::string, int> files_;  // scene files placed so far: canonical path -> object
 
     [[noreturn]] void fail(const std::string& field, const std::string& problem) const { where_.fail(field, problem); }
 
@@ -519,7 +552,7 @@ private:
         const json* j = member(object, "material");
         if (!j) return 0;
         std::string p = path + ".material";
-        int count = int(d.world.materials.size());
+        int count = own_materials_;
         if (j->is_string()) {
             auto it = std::find(d.material_names.begin(), d.material_names.end(), j->get<std::string>());
             if (it == d.material_names.end() || j->get<std::string>().empty()) {
@@ -536,17 +569,337 @@ private:
                                 "a material name or an index from 0 to " + std::to_string(count - 1)));
     }
 
+    // parent[key], a list, each element read by read_one(element, its path).
     template <class F>
-    void read_list(scene_description& d, const std::string& key, F&& read_one) const {
-        const json* list = member(doc_, key);
+    void read_list(const json& parent, const std::string& parent_path, const std::string& key, F&& read_one) const {
+        const json* list = member(parent, key);
         if (!list) return;
-        if (!list->is_array()) fail(key, "expected an array [ {...}, ... ], got " + describe(*list, key));
-        for (size_t i = 0; i < list->size(); ++i) read_one((*list)[i], key + "[" + std::to_string(i) + "]");
-        if (size_t(d.world.object_count()) > max_objects) fail(key, "more than 10 million objects in the scene");
+        const std::string path = child(parent_path, key);
+        if (!list->is_array()) fail(path, "expected an array [ {...}, ... ], got " + describe(*list, path));
+        for (size_t i = 0; i < list->size(); ++i) read_one((*list)[i], path + "[" + std::to_string(i) + "]");
     }
 
-    void read_sphere(scene_description& d, const json& j, const std::string& p) const {
-        check_keys(j, p, {"center", "radius", "material"});
+    // Counts shapes written in the file, refusing more than max_objects.
+    void count_written(size_t n, const std::string& path) {
+        written_ += n;
+        if (written_ > max_objects) fail(path, "more than 10 million objects in the scene");
+    }
+
+    // The shapes an object (or the scene itself) writes out: spheres,
+    // planes, triangles and meshes of j, into target.
+    void read_shapes(scene_description& d, const json& j, const std::string& path, object_definition& target) {
+        read_list(j, path, "spheres", [&](const json& x, const std::string& p) { read_sphere(d, x, p, target); });
+        read_list(j, path, "planes", [&](const json& x, const std::string& p) { read_plane(d, x, p, target); });
+        read_list(j, path, "triangles", [&](const json& x, const std::string& p) { read_triangle(d, x, p, target); });
+        read_list(j, path, "meshes", [&](const json& x, const std::string& p) { read_mesh(d, x, p, target); });
+    }
+
+    // What an object in "objects" or an instance written in place holds:
+    // shapes, instances, a generated database, another scene file.
+    void read_definition(scene_description& d, const json& j, const std::string& path, object_definition& target) {
+        read_shapes(d, j, path, target);
+        read_list(j, path, "instances", [&](const json& x, const std::string& p) { read_instance(d, x, p, target); });
+        if (auto* g = member(j, "generate")) read_generate(d, *g, child(path, "generate"), target);
+        if (auto* f = member(j, "scene")) target.instances.push_back(identity_placement(file_object(d, *f, child(path, "scene")), path));
+    }
+
+    instance_placement identity_placement(int object, const std::string& path) const {
+        return {object, affine_transform{}, affine_transform{}, source_ + ": " + path};
+    }
+
+    // A new object: its slot is taken first, so that the objects it places
+    // (read while it is read) come after it and its index stays put.
+    template <class F>
+    int new_object(scene_description& d, const std::string& name, F&& fill) {
+        const int index = int(d.objects.size());
+        d.objects.emplace_back();
+        object_definition body;
+        body.name = name;
+        fill(body);
+        d.objects[size_t(index)] = std::move(body);
+        return index;
+    }
+
+    // "objects": {"name": {...}, ...}: every one is read (so a mistake in an
+    // object nothing places yet is still found), each once, however often placed.
+    void read_named_objects(scene_description& d) {
+        const json* objects = member(doc_, "objects");
+        if (!objects) return;
+        if (!objects->is_object())
+            fail("objects", "expected an object {\"name\": {...}, ...} of named objects, got " + describe(*objects, "objects"));
+        for (auto it = objects->begin(); it != objects->end(); ++it) named_object(d, it.key(), "objects." + it.key());
+    }
+
+    int named_object(scene_description& d, const std::string& name, const std::string& asked_at) {
+        if (auto it = named_.find(name); it != named_.end()) return it->second;
+        const json* objects = member(doc_, "objects");
+        if (!objects || !objects->is_object() || !objects->contains(name)) {
+            std::vector<std::string> names;
+            if (objects && objects->is_object())
+                for (auto it = objects->begin(); it != objects->end(); ++it) names.push_back("\"" + it.key() + "\"");
+            fail(asked_at, "no object is named \"" + name + "\" (" +
+                               (names.empty() ? std::string("the file has no \"objects\"") : "the names are " + join(names)) + ")");
+        }
+        if (std::find(resolving_.begin(), resolving_.end(), name) != resolving_.end()) {
+            std::string cycle;
+            for (auto it = std::find(resolving_.begin(), resolving_.end(), name); it != resolving_.end(); ++it)
+                cycle += "\"" + *it + "\" -> ";
+            fail(asked_at, "the object \"" + name + "\" places itself (" + cycle + "\"" + name +
+                               "\"): an object cannot be one of its own parts");
+        }
+        const std::string path = "objects." + name;
+        const json& j = (*objects)[name];
+        check_keys(j, path, definition_keys);
+        resolving_.push_back(name);
+        const int index = new_object(d, path, [&](object_definition& body) { read_definition(d, j, path, body); });
+        resolving_.pop_back();
+        named_[name] = index;
+        return index;
+    }
+
+    // An instance: {"object": NAME} or an object written in place (any of
+    // definition_keys), with an optional "transform"; placed into target.
+    void read_instance(scene_description& d, const json& j, const std::string& p, object_definition& target) {
+        std::vector<std::string> keys = definition_keys;
+        keys.push_back("object");
+        keys.push_back("transform");
+        check_keys(j, p, keys);
+        std::vector<std::string> written;
+        for (const auto& k : definition_keys)
+            if (member(j, k)) written.push_back(k);
+        const json* name = member(j, "object");
+        if (name && !written.empty())
+            where_.fail_at_key(child(p, written[0]),
+                               "an instance places either a named object (\"object\") or one written in place "
+                               "(shapes, \"instances\", \"generate\", \"scene\"), not both");
+        if (!name && written.empty())
+            fail(p, "missing what to place: \"object\" (a name from \"objects\"), or shapes, \"instances\", "
+                    "\"generate\" or \"scene\" written in place");
+        int object;
+        if (name) {
+            if (!name->is_string())
+                fail(p + ".object", "expected the name of an object in \"objects\", got " + describe(*name, p + ".object"));
+            object = named_object(d, name->get<std::string>(), p + ".object");
+        } else if (written.size() == 1 && written[0] == "scene") {
+            object = file_object(d, *member(j, "scene"), p + ".scene");  // the file's object itself: one level less
+        } else {
+            object = new_object(d, source_ + ": " + p, [&](object_definition& body) { read_definition(d, j, p, body); });
+        }
+        place(object, member(j, "transform"), p, target);
+    }
+
+    // Places object into target, by the transform at p.transform (identity without one).
+    void place(int object, const json* transform, const std::string& p, object_definition& target) const {
+        const affine_transform t = transform ? read_transform(*transform, p + ".transform") : affine_transform{};
+        target.instances.push_back({object, t, inverted(t), source_ + ": " + p});
+    }
+
+    // "scene": "other.json": the other file's shapes, instances and
+    // materials (its camera and lights are not used), read once however
+    // often it is placed. Its path is relative to this file's folder.
+    int file_object(scene_description& d, const json& name, const std::string& path) {
+        if (!name.is_string()) fail(path, "expected the path of a scene file, got " + describe(name, path));
+        const std::filesystem::path file = std::filesystem::path(source_).parent_path() / name.get<std::string>();
+        std::error_code ec;
+        std::string key = std::filesystem::weakly_canonical(file, ec).string();
+        if (ec) key = file.lexically_normal().string();
+        if (auto it = files_.find(key); it != files_.end()) return it->second;
+        if (auto it = std::find(chain_.files.begin(), chain_.files.end(), key); it != chain_.files.end()) {
+            std::string cycle;
+            for (size_t i = size_t(it - chain_.files.begin()); i < chain_.shown.size(); ++i) cycle += chain_.shown[i] + " -> ";
+            fail(path, "the scene file " + file.string() + " places itself (" + cycle + file.string() +
+                           "): a scene cannot be one of its own parts");
+        }
+        scene_description placed;
+        try {
+            std::ifstream in(file, std::ios::binary);
+            if (!std::filesystem::is_regular_file(file, ec) || !in)
+                fail(path, "cannot read the scene file " + file.string() +
+                               (std::filesystem::exists(file, ec) ? "" : ": no such file"));
+            std::ostringstream text;
+            text << in.rdbuf();
+            chain_.files.push_back(key);
+            chain_.shown.push_back(file.string());
+            placed = parse_in_chain(text.str(), file.string(), chain_);
+            chain_.files.pop_back();
+            chain_.shown.pop_back();
+        } catch (const scene_error& e) {
+            if (e.file() == source_) throw;  // this file's own error (raised just above)
+            // The placed file's own message, and where it was placed from.
+            const auto [line, column] = where_.position(path);
+            throw scene_error(e.file(), e.line(), e.column(), e.field(),
+                              e.problem() + " (in the scene file placed at " + source_ + ":" + std::to_string(line) +
+                                  ":" + std::to_string(column) + ")");
+        }
+        const int index = merge_placed_file(d, std::move(placed), file.string());
+        files_[key] = index;
+        return index;
+    }
+
+    // The placed file's materials follow this scene's; its objects follow
+    // this scene's objects; its top level becomes one object.
+    static int merge_placed_file(scene_description& d, scene_description placed, const std::string& name) {
+        const int material_base = int(d.world.materials.size()), object_base = int(d.objects.size());
+        for (const auto& m : placed.world.materials) {
+            d.world.materials.push_back(m);
+            d.material_names.push_back("");  // its names are its own: this file cannot refer to them
+        }
+        auto renumber = [&](object_definition& o) {
+            for (auto& x : o.spheres) x.material += material_base;
+            for (auto& x : o.planes) x.material += material_base;
+            for (auto& x : o.triangles) x.material += material_base;
+            for (auto& i : o.instances) i.object += object_base;
+        };
+        for (auto& o : placed.objects) {
+            renumber(o);
+            d.objects.push_back(std::move(o));
+        }
+        object_definition whole;
+        whole.name = name;
+        whole.spheres = std::move(placed.world.spheres);
+        whole.planes = std::move(placed.world.planes);
+        whole.triangles = std::move(placed.world.triangles);
+        whole.instances = std::move(placed.instances);
+        renumber(whole);
+        d.objects.push_back(std::move(whole));
+        d.mesh_count += placed.mesh_count;
+        return int(d.objects.size()) - 1;
+    }
+
+    void check_nesting(const scene_description& d) const {
+        const std::vector<int> depth = nesting_depths(d.objects);
+        int deepest = 0;
+        for (const auto& i : d.instances) deepest = std::max(deepest, 1 + depth[size_t(i.object)]);
+        if (deepest > max_nesting)
+            fail(member(doc_, "objects") ? "objects" : "instances",
+                 "instances are nested " + std::to_string(deepest) + " deep; at most " + std::to_string(max_nesting) +
+                     " levels are allowed");
+    }
+
+    // ---- transforms ----
+
+    // A transform: {"translate": ..., "rotate": ..., "scale": ...} (scale
+    // first, then rotate, then translate), {"matrix": [[...], [...], [...]]},
+    // or a list of these applied first to last. Refused when singular.
+    affine_transform read_transform(const json& j, const std::string& path) const {
+        affine_transform t;
+        if (j.is_array()) {
+            if (j.empty()) fail(path, "expected a transform or a list of transforms, got an empty array");
+            for (size_t i = 0; i < j.size(); ++i) t = then(t, read_one_transform(j[i], path + "[" + std::to_string(i) + "]"));
+        } else {
+            t = read_one_transform(j, path);
+        }
+        check_invertible(t, path);
+        return t;
+    }
+
+    affine_transform read_one_transform(const json& j, const std::string& path) const {
+        check_keys(j, path, {"translate", "rotate", "scale", "matrix"});
+        if (auto* m = member(j, "matrix")) {
+            for (const char* other : {"translate", "rotate", "scale"})
+                if (member(j, other))
+                    where_.fail_at_key(child(path, other),
+                                       "a matrix is a whole transform: give translate, rotate and scale as transforms "
+                                       "of their own in a list [ {...}, {...} ], or fold them into the matrix");
+            return read_matrix(*m, path + ".matrix");
+        }
+        if (j.empty()) fail(path, "expected \"translate\", \"rotate\", \"scale\" or \"matrix\", got an empty object");
+        mat3d scale(1.0), rotation(1.0);
+        vec3d offset(0.0);
+        if (auto* s = member(j, "scale")) scale = read_scale(*s, path + ".scale");
+        if (auto* r = member(j, "rotate")) rotation = read_rotation(*r, path + ".rotate");
+        if (auto* t = member(j, "translate")) offset = read_point(*t, path + ".translate");
+        return {rotation * scale, offset};
+    }
+
+    // [[a, b, c, tx], [d, e, f, ty], [g, h, i, tz]]: rows, the last column the translation.
+    affine_transform read_matrix(const json& j, const std::string& path) const {
+        const std::string what = "a 3x4 matrix [[a, b, c, tx], [d, e, f, ty], [g, h, i, tz]] (rows; the last column moves)";
+        if (!j.is_array() || j.size() != 3) fail(path, "expected " + what + ", got " + describe(j, path));
+        affine_transform t;
+        for (size_t row = 0; row < 3; ++row) {
+            const std::string rp = path + "[" + std::to_string(row) + "]";
+            const json& r = j[row];
+            if (!r.is_array() || r.size() != 4) fail(rp, "expected a row of 4 numbers (part of " + what + "), got " + describe(r, rp));
+            for (size_t col = 0; col < 4; ++col) {
+                const std::string ep = rp + "[" + std::to_string(col) + "]";
+                const double x = read_number(r[col], ep);
+                if (!(std::fabs(x) <= max_coordinate))
+                    fail(ep, "expected a matrix entry of magnitude at most 1e15, got " + where_.token_at(ep));
+                if (col < 3) t.linear[int(col)][int(row)] = x;  // GLM: [column][row]
+                else t.offset[int(row)] = x;
+            }
+        }
+        return t;
+    }
+
+    // A number (the same in every direction) or [sx, sy, sz], none zero.
+    mat3d read_scale(const json& j, const std::string& path) const {
+        vec3d s;
+        if (j.is_number()) s = vec3d(read_number(j, path));
+        else s = read_triple(j, path, "a scale: a number, or [sx, sy, sz]");
+        for (int i = 0; i < 3; ++i) {
+            const std::string at = j.is_number() ? path : path + "[" + std::to_string(i) + "]";
+            if (!(s[i] != 0 && std::fabs(s[i]) <= max_coordinate && std::fabs(s[i]) >= 1 / max_coordinate))
+                fail(at, "expected a scale factor of magnitude from 1e-15 to 1e15 (a zero scale would flatten the "
+                         "object: the transform would be singular), got " + where_.token_at(at));
+        }
+        mat3d m(1.0);
+        m[0][0] = s.x, m[1][1] = s.y, m[2][2] = s.z;
+        return m;
+    }
+
+    // {"axis": [x, y, z], "degrees": a}: counter-clockwise by a seen from
+    // where the axis points (right-handed), Rodrigues' formula.
+    mat3d read_rotation(const json& j, const std::string& path) const {
+        check_keys(j, path, {"axis", "degrees"});
+        const vec3d axis = normalize(read_direction(required(j, path, "axis", "the axis [x, y, z]"), path + ".axis"));
+        const double degrees = read_number_in(required(j, path, "degrees", "the angle in degrees"), path + ".degrees",
+                                              -1e6, false, 1e6, "an angle in degrees from -1e6 to 1e6");
+        const double radians = degrees * (std::acos(-1.0) / 180.0);
+        const double c = std::cos(radians), s = std::sin(radians);
+        mat3d k(0.0);  // the cross-product matrix of the axis: k * v = axis x v
+        k[1][0] = -axis.z, k[2][0] = axis.y;  // GLM: k[column][row]
+        k[0][1] = axis.z, k[2][1] = -axis.x;
+        k[0][2] = -axis.y, k[1][2] = axis.x;
+        return mat3d(1.0) + s * k + (1 - c) * (k * k);
+    }
+
+    // Invertible, and not so nearly singular that its inverse means nothing:
+    // |det| against the product of the columns' lengths (Hadamard's bound,
+    // equal to |det| for perpendicular columns, whatever their lengths).
+    void check_invertible(const affine_transform& t, const std::string& path) const {
+        const double det = glm::determinant(t.linear);
+        const double bound = length(t.linear[0]) * length(t.linear[1]) * length(t.linear[2]);
+        const affine_transform inverse = inverted(t);
+        bool finite = is_finite(inverse.offset);
+        for (int c = 0; c < 3; ++c) finite = finite && is_finite(inverse.linear[c]);
+        if (!(std::fabs(det) > 1e-12 * bound) || !finite) {
+            std::ostringstream what;
+            what << "expected an invertible transform, got a singular matrix (determinant " << det
+                 << "): it flattens the object onto a plane, a line or a point, so no ray can be moved into its space";
+            fail(path, what.str());
+        }
+    }
+
+    // A shape with a "transform" is placed as an instance of an object that
+    // holds it alone (a sphere under a non-uniform scale is an ellipsoid).
+    object_definition& holder(scene_description& d, const json& j, const std::string& p, object_definition& target,
+                              object_definition& alone) const {
+        (void)d, (void)p;
+        return member(j, "transform") ? alone : target;
+    }
+    void place_alone(scene_description& d, const json& j, const std::string& p, object_definition& target,
+                     object_definition&& alone) {
+        if (!member(j, "transform")) return;
+        alone.name = source_ + ": " + p;
+        const int index = int(d.objects.size());
+        d.objects.push_back(std::move(alone));
+        place(index, member(j, "transform"), p, target);
+    }
+
+    void read_sphere(scene_description& d, const json& j, const std::string& p, object_definition& target) {
+        check_keys(j, p, {"center", "radius", "material", "transform"});
         sphere<double> s;
         s.center = read_point(required(j, p, "center", "the centre [x, y, z]"), p + ".center");
         s.radius = read_number_in(required(j, p, "radius", "a number > 0"), p + ".radius", 0, true, max_coordinate,
@@ -554,16 +907,20 @@ private:
         if (!(float(s.radius) > 0.0f))
             fail(p + ".radius", "the radius " + where_.token_at(p + ".radius") + " rounds to 0 in float");
         s.material = read_material_ref(d, j, p);
-        d.world.spheres.push_back(s);
+        count_written(1, p);
+        object_definition alone;
+        holder(d, j, p, target, alone).spheres.push_back(s);
+        place_alone(d, j, p, target, std::move(alone));
     }
 
-    void read_plane(scene_description& d, const json& j, const std::string& p) const {
+    void read_plane(scene_description& d, const json& j, const std::string& p, object_definition& target) {
         check_keys(j, p, {"point", "normal", "material"});
         plane<double> s;
         s.point = read_point(required(j, p, "point", "a point on the plane [x, y, z]"), p + ".point");
         s.normal = read_direction(required(j, p, "normal", "the plane's normal [x, y, z], not zero"), p + ".normal");
         s.material = read_material_ref(d, j, p);
-        d.world.planes.push_back(s);
+        count_written(1, p);
+        target.planes.push_back(s);
     }
 
     void check_area(const vec3d& a, const vec3d& b, const vec3d& c, const std::string& p) const {
@@ -572,7 +929,7 @@ private:
                         " lie on one line: the triangle has zero area");
     }
 
-    void read_triangle(scene_description& d, const json& j, const std::string& p) const {
+    void read_triangle(scene_description& d, const json& j, const std::string& p, object_definition& target) {
         check_keys(j, p, {"a", "b", "c", "material"});
         triangle<double> t;
         t.a = read_point(required(j, p, "a", "the first corner [x, y, z]"), p + ".a");
@@ -580,31 +937,65 @@ private:
         t.c = read_point(required(j, p, "c", "the third corner [x, y, z]"), p + ".c");
         check_area(t.a, t.b, t.c, p);
         t.material = read_material_ref(d, j, p);
-        d.world.triangles.push_back(t);
+        count_written(1, p);
+        target.triangles.push_back(t);
     }
 
-    // "generate": {"name": "balls", "size": 4}: one of the Standard
-    // Procedural Databases (common/spd.hpp), its materials 0, 1 being the
-    // scene's first materials.
-    void read_generate(scene_description& d, const json& j) const {
-        check_keys(j, "generate", {"name", "size"});
-        const json& n = required(j, "generate", "name", "\"balls\", \"tetra\" or \"mount\"");
+    // "generate": {"name": "balls", "size": 4, "instanced": true}: one of the
+    // Standard Procedural Databases (common/spd.hpp), its materials 0, 1
+    // being the scene's first materials; instanced: as instances of
+    // instances (balls and tetra).
+    void read_generate(scene_description& d, const json& j, const std::string& path, object_definition& target) const {
+        check_keys(j, path, {"name", "size", "instanced"});
+        const json& n = required(j, path, "name", "\"balls\", \"tetra\" or \"mount\"");
         spd_database db;
         if (!n.is_string() || !spd_from_name(n.get<std::string>(), db))
-            fail("generate.name", "expected \"balls\", \"tetra\" or \"mount\", got " + describe(n, "generate.name"));
-        int max = spd_max_size(db), materials = spd_material_count(db);
-        int size = int(read_integer(required(j, "generate", "size", "a size"), "generate.size", 1, max,
-                                    "a size from 1 to " + std::to_string(max) + " for " + spd_name(db)));
-        if (int(d.world.materials.size()) < materials)
-            fail("generate", std::string(spd_name(db)) + " needs " + std::to_string(materials) + " materials in \"materials\"");
+            fail(path + ".name", "expected \"balls\", \"tetra\" or \"mount\", got " + describe(n, path + ".name"));
+        bool instanced = false;
+        if (auto* i = member(j, "instanced")) {
+            if (!i->is_boolean()) fail(path + ".instanced", "expected true or false, got " + describe(*i, path + ".instanced"));
+            instanced = i->get<bool>();
+            if (instanced && spd_max_instanced_size(db) == 0)
+                fail(path + ".instanced", std::string(spd_name(db)) +
+                                              " is not self-similar, so it has no instanced form (balls and tetra have)");
+        }
+        int max = instanced ? spd_max_instanced_size(db) : spd_max_size(db), materials = spd_material_count(db);
+        int size = int(read_integer(required(j, path, "size", "a size"), path + ".size", 1, max,
+                                    "a size from 1 to " + std::to_string(max) + " for " + spd_name(db) +
+                                        (instanced ? " (instanced)" : "")));
+        if (own_materials_ < materials)
+            fail(path, std::string(spd_name(db)) + " needs " + std::to_string(materials) + " materials in \"materials\"");
         std::vector<int> ids;
         for (int m = 0; m < materials; ++m) ids.push_back(m);
-        spd_generate(db, size, d.world, ids);
+        if (instanced) {
+            spd_generate_instanced(db, size, target, d.objects, ids);
+            return;
+        }
+        scene<double> shapes;
+        spd_generate(db, size, shapes, ids);
+        auto append = [](auto& to, auto& from) {
+            if (to.empty()) to = std::move(from);
+            else to.insert(to.end(), from.begin(), from.end());
+        };
+        append(target.spheres, shapes.spheres);
+        append(target.planes, shapes.planes);
+        append(target.triangles, shapes.triangles);
     }
 
-    void read_mesh(scene_description& d, const json& j, const std::string& p) const {
-        check_keys(j, p, {"vertices", "faces", "material", "obj"});
-        if (auto* obj = member(j, "obj")) return read_obj(d, j, *obj, p);
+    void read_mesh(scene_description& d, const json& j, const std::string& p, object_definition& target) {
+        check_keys(j, p, {"vertices", "faces", "material", "obj", "transform"});
+        object_definition alone;
+        object_definition& into = holder(d, j, p, target, alone);
+        if (auto* obj = member(j, "obj")) {
+            read_obj(d, j, *obj, p, into);
+        } else {
+            read_mesh_lists(d, j, p, into);
+        }
+        ++d.mesh_count;
+        place_alone(d, j, p, target, std::move(alone));
+    }
+
+    void read_mesh_lists(scene_description& d, const json& j, const std::string& p, object_definition& into) {
         const json& vs = required(j, p, "vertices", "an array of points [[x, y, z], ...]");
         if (!vs.is_array() || vs.empty())
             fail(p + ".vertices", "expected a non-empty array of points [[x, y, z], ...], got " +
@@ -629,14 +1020,13 @@ private:
                                           "a vertex index from 0 to " + std::to_string(last)));
             triangle<double> t{vertices[size_t(idx[0])], vertices[size_t(idx[1])], vertices[size_t(idx[2])], material};
             check_area(t.a, t.b, t.c, fp);
-            d.world.triangles.push_back(t);
-            if (size_t(d.world.object_count()) > max_objects) fail(fp, "more than 10 million objects in the scene");
+            into.triangles.push_back(t);
+            count_written(1, fp);
         }
-        ++d.mesh_count;
     }
 
     // {"obj": "bunny.obj"}: a path relative to the scene file's folder.
-    void read_obj(scene_description& d, const json& j, const json& obj, const std::string& p) const {
+    void read_obj(scene_description& d, const json& j, const json& obj, const std::string& p, object_definition& into) {
         if (!obj.is_string()) fail(p + ".obj", "expected the path of an OBJ file, got " + describe(obj, p + ".obj"));
         if (member(j, "vertices") || member(j, "faces"))
             fail(p + ".obj", "a mesh is either an OBJ file or vertices and faces, not both");
@@ -645,12 +1035,11 @@ private:
         try {
             obj_mesh mesh = load_obj_mesh(file.string(), max_coordinate);
             for (auto& t : mesh.triangles) t.material = material;
-            d.world.triangles.insert(d.world.triangles.end(), mesh.triangles.begin(), mesh.triangles.end());
+            into.triangles.insert(into.triangles.end(), mesh.triangles.begin(), mesh.triangles.end());
+            count_written(mesh.triangles.size(), p + ".obj");
         } catch (const obj_error& e) {
             fail(p + ".obj", e.what());
         }
-        if (size_t(d.world.object_count()) > max_objects) fail(p + ".obj", "more than 10 million objects in the scene");
-        ++d.mesh_count;
     }
 };
 
@@ -665,7 +1054,9 @@ std::string syntax_problem(const std::string& what) {
 
 }  // namespace
 
-scene_description parse_scene(const std::string& text, const std::string& source) {
+namespace {
+
+scene_description parse_in_chain(const std::string& text, const std::string& source, file_chain& chain) {
     // nlohmann-json stops reading at a NUL byte and ignores the rest, which
     // would let garbage after it pass unseen: a scene file is text.
     if (size_t nul = text.find('\0'); nul != std::string::npos) {
@@ -688,7 +1079,24 @@ scene_description parse_scene(const std::string& text, const std::string& source
         where.fail_at_overflowing_number();
         throw scene_error(source, 0, 0, "", "not valid JSON: a number too large for a double");
     }
-    return reader(body, source, doc).read();
+    return reader(body, source, doc, chain).read();
+}
+
+// The chain a file starts: itself, so that it cannot place itself.
+file_chain chain_of(const std::string& source) {
+    file_chain chain;
+    std::error_code ec;
+    const std::string key = std::filesystem::weakly_canonical(source, ec).string();
+    chain.files.push_back(ec ? std::filesystem::path(source).lexically_normal().string() : key);
+    chain.shown.push_back(source);
+    return chain;
+}
+
+}  // namespace
+
+scene_description parse_scene(const std::string& text, const std::string& source) {
+    file_chain chain = chain_of(source);
+    return parse_in_chain(text, source, chain);
 }
 
 scene_description load_scene_file(const std::string& path) {

@@ -16,7 +16,10 @@
 //     "planes":    [{"point": [0, -1, 0], "normal": [0, 1, 0]}],
 //     "triangles": [{"a": [0, 0, 0], "b": [1, 0, 0], "c": [0, 1, 0]}],
 //     "meshes":    [{"vertices": [[0,0,0], [1,0,0], [0,1,0]], "faces": [[0, 1, 2]]}],
-//     "lights":    [{"position": [5, 5, 5], "intensity": [20, 20, 20]}]
+//     "lights":    [{"position": [5, 5, 5], "intensity": [20, 20, 20]}],
+//     "objects":   {"tree": {"meshes": [{"obj": "tree.obj"}]}},
+//     "instances": [{"object": "tree", "transform": {"translate": [2, 0, 0], "scale": 0.5}},
+//                   {"scene": "room.json", "transform": {"rotate": {"axis": [0, 1, 0], "degrees": 30}}}]
 //   }
 //
 // Why so strict: a typo such as "raduis" would otherwise be ignored and the
@@ -31,6 +34,7 @@
 #pragma once
 
 #include "camera.hpp"
+#include "instances.hpp"
 #include "interval.hpp"
 #include "scene.hpp"
 
@@ -57,12 +61,19 @@ struct camera_description {
 
 // A parsed scene file. Shapes are kept in double, as written; convert_scene
 // gives the same scene in float for single-precision rendering.
+//
+// Instances (instances.hpp): `world` holds the shapes written at the top
+// level, `instances` what the top level places, each an object of
+// `objects` (in its own coordinates, with instances of its own). A scene
+// without instances has both empty, and `world` is the whole scene.
 struct scene_description {
     std::string source;                    // file name, for messages
     camera_description camera;
     scene<double> world;
-    std::vector<std::string> material_names;  // parallel to world.materials ("" when unnamed)
+    std::vector<std::string> material_names;  // parallel to world.materials ("" when unnamed or from a placed file)
     int mesh_count = 0;                    // meshes are stored as their triangles
+    std::vector<object_definition> objects;   // what instances place (named, written in place, files, generated)
+    std::vector<instance_placement> instances;  // the top level's instances
 };
 
 // The error for a bad scene file. what() is the whole message,

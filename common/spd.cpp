@@ -236,7 +236,107 @@ private:
     const std::vector<int>& m_;
 };
 
+// Appends to an object_definition.
+class definition_sink : public spd_sink {
+public:
+    definition_sink(object_definition& d, const std::vector<int>& materials) : d_(d), m_(materials) {}
+    void sphere(const vec3d& c, double r, int m) override { d_.spheres.push_back({c, r, m_.at(size_t(m))}); }
+    void triangle(const vec3d& a, const vec3d& b, const vec3d& c, int m) override {
+        d_.triangles.push_back({a, b, c, m_.at(size_t(m))});
+    }
+    void plane(const vec3d& p, const vec3d& n, int m) override { d_.planes.push_back({p, n, m_.at(size_t(m))}); }
+
+private:
+    object_definition& d_;
+    const std::vector<int>& m_;
+};
+
+// ---- instanced ---------------------------------------------------------
+
+instance_placement placement(int object, const affine_transform& to_parent, const std::string& field) {
+    return {object, to_parent, inverted(to_parent), field};
+}
+
+// The columns u, v, w of the frame generate_balls gives a sphere whose
+// children point away along w.
+mat3d frame_matrix(const vec3d& w) {
+    vec3d u, v;
+    frame_around(w, u, v);
+    return mat3d(u, v, w);
+}
+
+// Level L of the flake: the root sphere (radius 0.5 at the origin, as
+// generate_balls makes it) and nine copies of level L - 1. Child i is the
+// whole turned so that its frame (the root's frame, up = z) becomes the
+// frame flake() gives a child pointing along direction i, scaled by 1/3 and
+// moved out to touch the root: centre at (0.5 + 0.5 / 3) * direction.
+void instanced_balls(int size, object_definition& into, std::vector<object_definition>& objects,
+                     const std::vector<int>& materials) {
+    const mat3d root = frame_matrix(vec3d(0, 0, 1));
+    int below = -1;
+    for (int level = 0; level <= size; ++level) {
+        object_definition d;
+        d.name = "generate (balls, level " + std::to_string(level) + ")";
+        d.spheres.push_back({vec3d(0), 0.5, materials.at(1)});
+        if (below >= 0)
+            for (const vec3d& local : child_directions()) {
+                const vec3d dir = root * local;
+                const affine_transform child{frame_matrix(dir) * glm::transpose(root) * (1.0 / 3.0),
+                                             (0.5 + 0.5 / 3.0) * dir};
+                d.instances.push_back(placement(below, child, d.name));
+            }
+        objects.push_back(std::move(d));
+        below = int(objects.size()) - 1;
+    }
+    into.planes.push_back({vec3d(0, 0, -0.5), vec3d(0, 0, 1), materials.at(0)});
+    into.instances.push_back(placement(below, affine_transform{}, "generate (balls)"));
+}
+
+// Level L of the tetrahedron: four copies of level L - 1 at half the size,
+// each moved towards its corner (corner c's copy: p -> (p + p_c) / 2, the
+// map sierpinski() applies to the corners); level 0 is its four faces.
+void instanced_tetra(int size, object_definition& into, std::vector<object_definition>& objects,
+                     const std::vector<int>& materials) {
+    const vec3d p[4] = {{1, 1, 1}, {-1, -1, 1}, {-1, 1, -1}, {1, -1, -1}};  // as generate_tetra
+    object_definition faces;
+    faces.name = "generate (tetra, level 0)";
+    definition_sink sink(faces, materials);
+    tetra_faces(p, sink);
+    objects.push_back(std::move(faces));
+    int below = int(objects.size()) - 1;
+    for (int level = 1; level < size; ++level) {
+        object_definition d;
+        d.name = "generate (tetra, level " + std::to_string(level) + ")";
+        for (const vec3d& corner : p)
+            d.instances.push_back(placement(below, affine_transform{mat3d(0.5), 0.5 * corner}, d.name));
+        objects.push_back(std::move(d));
+        below = int(objects.size()) - 1;
+    }
+    into.instances.push_back(placement(below, affine_transform{}, "generate (tetra)"));
+}
+
 }  // namespace
+
+int spd_max_instanced_size(spd_database db) {
+    switch (db) {
+        case spd_database::balls: return 12;  // 3.2e12 spheres; the smallest radius 0.5 / 3^12 = 9.4e-7
+        case spd_database::tetra: return 16;  // 4.3e9 triangles
+        case spd_database::mount: return 0;
+    }
+    return 0;
+}
+
+spd_counts spd_generate_instanced(spd_database db, int size, object_definition& into,
+                                  std::vector<object_definition>& objects, const std::vector<int>& materials) {
+    if (spd_max_instanced_size(db) == 0)
+        throw std::invalid_argument(std::string("spd: ") + spd_name(db) + " is not self-similar: it has no instanced form");
+    if (size < 1 || size > spd_max_instanced_size(db))
+        throw std::invalid_argument(std::string("spd: instanced ") + spd_name(db) + " takes a size from 1 to " +
+                                    std::to_string(spd_max_instanced_size(db)) + ", got " + std::to_string(size));
+    if (db == spd_database::balls) instanced_balls(size, into, objects, materials);
+    else instanced_tetra(size, into, objects, materials);
+    return spd_expected_counts(db, size);
+}
 
 spd_counts spd_generate(spd_database db, int size, scene<double>& into, const std::vector<int>& materials) {
     if (size >= 1 && size <= spd_max_size(db)) {  // else the call below throws

@@ -29,6 +29,7 @@
 // the SPD.
 #pragma once
 
+#include "instances.hpp"
 #include "math.hpp"
 #include "scene.hpp"
 
@@ -76,5 +77,30 @@ spd_counts spd_generate(spd_database db, int size, spd_sink& out);
 // The same, appended to a scene's shapes (memory reserved up front), with
 // material m of the database mapped to materials[m] of the scene.
 spd_counts spd_generate(spd_database db, int size, scene<double>& into, const std::vector<int>& materials);
+
+// ---- the self-similar databases as instances of instances ----------------
+//
+// A sphereflake of level L is a sphere and nine copies of the flake of level
+// L - 1, each a third of the size; a Sierpinski tetrahedron of level L is
+// four copies of level L - 1 at half the size. Stored that way (one object
+// per level: a sphere and nine instances, or four instances), the level-10
+// sphereflake's 3,922,632,451 spheres take eleven spheres and 90 instances.
+//
+// The tetrahedron is the flat one's, to rounding. The flake is the flat
+// one's to rounding up to size 2; from size 3 on its sub-flakes are turned
+// about their own axes differently: the flat generator picks each sphere's
+// frame from its direction in the world, which is not the rotated frame of
+// its parent, so the flat flake's children are not exact copies of the
+// whole, and copies are what instances are. (Both are sphereflakes: nine
+// children touching each sphere at the same angles.)
+int spd_max_instanced_size(spd_database db);  // balls 12, tetra 16, mount 0 (not self-similar)
+
+// Appends the levels' objects to `objects` and, to `into`, what the flat
+// database has at its top besides the fractal (the ground plane of balls)
+// and one instance (identity) of the whole; returns the counts of the
+// expanded database. Throws std::invalid_argument for a size out of range
+// or a database that is not self-similar.
+spd_counts spd_generate_instanced(spd_database db, int size, object_definition& into,
+                                  std::vector<object_definition>& objects, const std::vector<int>& materials);
 
 }  // namespace rt

@@ -6,7 +6,8 @@
 #   -DCLANGXX=clang++ -DSOURCE_DIR=<repo> -DWORK_DIR=<build dir> -DSECONDS=20
 set(fuzzer "${WORK_DIR}/scene_fuzzer")
 set(sources "${SOURCE_DIR}/tests/fuzz/scene_fuzz.cpp" "${SOURCE_DIR}/common/scene_file.cpp"
-            "${SOURCE_DIR}/common/spd.cpp" "${SOURCE_DIR}/common/obj_mesh.cpp")
+            "${SOURCE_DIR}/common/spd.cpp" "${SOURCE_DIR}/common/obj_mesh.cpp"
+            "${SOURCE_DIR}/common/instances.cpp")
 set(rebuild FALSE)
 foreach(f IN LISTS sources ITEMS "${SOURCE_DIR}/common/scene_file.hpp" "${SOURCE_DIR}/common/scene.hpp"
                                  "${SOURCE_DIR}/common/camera.hpp" "${SOURCE_DIR}/common/shapes.hpp"

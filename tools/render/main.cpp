@@ -117,6 +117,8 @@ int main(int argc, char** argv) {
 
     try {
         const scene_description scene = load_scene_file(scene_path);
+        if (!scene.instances.empty())
+            throw std::runtime_error(scene_path + ": this rt-render does not draw instances yet");
         const int w = width > 0 ? width : scene.camera.width, h = height > 0 ? height : scene.camera.height;
         std::optional<precision> forced;
         if (prec == "float") forced = precision::single;
