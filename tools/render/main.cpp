@@ -14,6 +14,7 @@
 // implemented yet.
 #include "fast_path.hpp"
 #include "general_path.hpp"
+#include "instanced_path.hpp"
 #include "scene_plan.hpp"
 
 #include "common/scene_file.hpp"
@@ -31,6 +32,18 @@ using namespace rt;
 using namespace rt::render_tool;
 
 namespace {
+
+// The process's peak resident memory (VmHWM), in MB; 0 where /proc is not there.
+double peak_memory_mb() {
+    std::FILE* f = std::fopen("/proc/self/status", "r");
+    if (!f) return 0;
+    char line[256];
+    double kb = 0;
+    while (std::fgets(line, sizeof line, f))
+        if (std::sscanf(line, "VmHWM: %lf kB", &kb) == 1) break;
+    std::fclose(f);
+    return kb / 1024;
+}
 
 // Size of object o, the unit in which hit-point errors are reported:
 // a sphere's radius, a triangle's shortest edge; planes have no size, so
@@ -91,7 +104,7 @@ int main(int argc, char** argv) {
     std::string scene_path, out = "out/render.png", prec = "auto";
     int width = 0, height = 0;
     double bound = 1e-3;
-    bool general = false, error = false, heatmap = false;
+    bool general = false, error = false, heatmap = false, flatten = false;
 
     CLI::App app{"rt-render: renders a scene file (scenes/README.md) with the exercises this build selects"};
     app.add_option("scene", scene_path, "scene file (.json)")->required();
@@ -108,6 +121,9 @@ int main(int argc, char** argv) {
     app.add_flag("--heatmap", heatmap,
                  "also write OUT-heatmap.png: boxes opened and objects asked per pixel by chapter 08's tree "
                  "(counted on the general path) and by brute force");
+    app.add_flag("--flatten", flatten,
+                 "expand a scene's instances into world-space shapes and render those (flat), to compare with the "
+                 "two-level tree");
     app.add_flag("--error", error, "measure the primary hits' error against a long double reference");
     try {
         app.parse(argc, argv);
@@ -116,10 +132,37 @@ int main(int argc, char** argv) {
     }
 
     try {
-        const scene_description scene = load_scene_file(scene_path);
-        if (!scene.instances.empty())
-            throw std::runtime_error(scene_path + ": this rt-render does not draw instances yet");
+        scene_description scene = load_scene_file(scene_path);
         const int w = width > 0 ? width : scene.camera.width, h = height > 0 ? height : scene.camera.height;
+        // Instances: the two-level tree, unless --flatten (or --general, which
+        // has no instances before chapter 10) asks for the scene expanded.
+        if (!scene.instances.empty() && (flatten || general)) {
+            const stopwatch sw;
+            scene = flattened(scene);
+            std::fprintf(stderr, "flattened: %zu spheres, %zu planes, %zu triangles in %.1f ms\n",
+                         scene.world.spheres.size(), scene.world.planes.size(), scene.world.triangles.size(),
+                         sw.seconds() * 1e3);
+        }
+        if (!scene.instances.empty()) {
+            if (error || heatmap) throw std::runtime_error("--error and --heatmap do not draw instances (use --flatten)");
+            const stopwatch sw;
+            const instanced_scene built(scene);
+            std::printf("plan: %s; %zu lights%s\n", built.describe().c_str(), scene.world.lights.size(),
+                        scene.world.lights.empty() ? "" : ": shading + shadow rays");
+            std::fflush(stdout);
+            render_stats stats;
+            stats.setup_seconds = sw.seconds();
+            image img = render_instanced(scene, built, w, h, stats);
+            const double seconds = sw.seconds(), tracing = seconds - stats.setup_seconds;
+            std::filesystem::path path(out);
+            if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+            write_png(img, out);
+            std::printf("rendered %s: %dx%d, specialised path (instances), %.1f ms (setup %.1f ms, tracing and shading "
+                        "%.1f ms), %ld rays (%ld primary), %.2f Mrays/s while tracing, peak memory %.0f MB -> %s\n",
+                        scene_path.c_str(), w, h, seconds * 1e3, stats.setup_seconds * 1e3, tracing * 1e3, stats.rays,
+                        long(w) * long(h), double(stats.rays) / tracing / 1e6, peak_memory_mb(), out.c_str());
+            return 0;
+        }
         std::optional<precision> forced;
         if (prec == "float") forced = precision::single;
         if (prec == "double") forced = precision::double_;

@@ -1,0 +1,503 @@
+// instanced_path.cpp — the two-level tree and its walk (see instanced_path.hpp).
+#include "instanced_path.hpp"
+
+#include "bvh_build.hpp"
+#include "fast_path_kernels.hpp"  // the plane and triangle tests, as the specialised path has them
+#include "look.hpp"
+
+#include "06-shading/shading.hpp"  // chapter 06's shade(), for lit scenes
+#include "common/render.hpp"
+#include "common/timing.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <stdexcept>
+
+namespace rt::render_tool {
+
+namespace {
+
+struct sphere_item {
+    vec3d center;
+    double radius, radius2;
+    int material;
+};
+
+struct triangle_item {
+    vec3d a, e1, e2, b, c;  // corner a and the edges b - a, c - a; b and c for the exact decision
+    double flat_scale;       // fast_path_kernels.hpp's bound on the determinant's rounding, over d_max
+    int material;
+};
+
+// An instance inside an object: where a ray goes to meet it.
+struct child_item {
+    int object;
+    mat3d from_linear;    // parent space -> the placed object's space (the inverse transform)
+    vec3d from_offset;
+    mat3d normal_matrix;  // the placed object's normals -> parent space: the inverse's transpose
+};
+
+struct plane_item {
+    vec3d point, unit_normal, normal;  // normal as given, for the exact "parallel" decision
+    int material;
+};
+
+// A box in double, as the walk tests it (the tree stores float boxes,
+// rounded outwards: they still hold everything).
+struct box3 {
+    vec3d lo{infinity<double>}, hi{-infinity<double>};
+    void add(const vec3d& p) { lo = glm::min(lo, p), hi = glm::max(hi, p); }
+    void add(const box3& b) { lo = glm::min(lo, b.lo), hi = glm::max(hi, b.hi); }
+    bool empty() const { return !(lo.x <= hi.x); }
+};
+
+}  // namespace
+
+// One object's items and its tree over them: spheres are items
+// [0, spheres), triangles follow, then the instances it places.
+struct level_object {
+    std::vector<sphere_item> spheres;
+    std::vector<triangle_item> triangles;
+    std::vector<child_item> children;
+    bvh_tree tree;
+    box3 bounds;  // of everything in it, in its own space (empty: nothing to hit)
+    size_t bytes() const {
+        return tree.bytes() + spheres.size() * sizeof(sphere_item) + triangles.size() * sizeof(triangle_item) +
+               children.size() * sizeof(child_item);
+    }
+};
+
+struct instanced_scene_data {
+    std::vector<level_object> objects;  // the scene's objects, then the top level
+    int top = 0;
+    std::vector<plane_item> planes;  // in world space: the top level's and those moved out of placed objects
+    double build_seconds = 0;
+    expanded_counts expanded;
+    size_t stored_spheres = 0, stored_triangles = 0, placements = 0;
+};
+
+namespace {
+
+vec3d apply(const affine_transform& t, const vec3d& p) { return t.linear * p + t.offset; }
+
+// A box rounded outwards to float and widened by 1e-7 of its largest
+// coordinate: the corners of a placed object's box are transformed with
+// rounding, and so is the ray that meets it; the padding is far above both
+// (double's rounding is 1e-16 of the coordinates) and below any visible size.
+bvh_box to_float_box(const box3& b) {
+    double magnitude = 0;
+    for (int a = 0; a < 3; ++a) magnitude = std::max({magnitude, std::fabs(b.lo[a]), std::fabs(b.hi[a])});
+    const double pad = 1e-7 * magnitude;
+    bvh_box out;
+    for (int a = 0; a < 3; ++a) {
+        out.lo[a] = std::nextafter(float(b.lo[a] - pad), -infinity<float>);
+        out.hi[a] = std::nextafter(float(b.hi[a] + pad), infinity<float>);
+    }
+    return out;
+}
+
+box3 of(const bvh_box& b) {
+    box3 out;
+    out.lo = vec3d(b.lo[0], b.lo[1], b.lo[2]);
+    out.hi = vec3d(b.hi[0], b.hi[1], b.hi[2]);
+    return out;
+}
+
+// The box of a placed object in its parent's space: its eight corners
+// transformed (an affine map sends the box to a parallelepiped inside the
+// corners' box), then widened by to_float_box.
+box3 placed_box(const box3& b, const affine_transform& to_parent) {
+    box3 out;
+    for (int corner = 0; corner < 8; ++corner)
+        out.add(apply(to_parent, vec3d(corner & 1 ? b.hi.x : b.lo.x, corner & 2 ? b.hi.y : b.lo.y,
+                                       corner & 4 ? b.hi.z : b.lo.z)));
+    return out;
+}
+
+triangle_item triangle_of(const triangle<double>& x) {
+    triangle_item t;
+    t.a = x.a, t.b = x.b, t.c = x.c;
+    t.e1 = x.b - x.a, t.e2 = x.c - x.a;
+    t.flat_scale = flat_scale(t.e1.x, t.e1.y, t.e1.z, t.e2.x, t.e2.y, t.e2.z);
+    t.material = x.material;
+    return t;
+}
+
+// Builds object o's level (its children first), once.
+void build_level(const std::vector<object_definition>& defs, int o, const object_definition& def,
+                 std::vector<level_object>& levels, std::vector<bool>& built) {
+    if (built[size_t(o)]) return;
+    level_object& level = levels[size_t(o)];
+    std::vector<bvh_box> boxes;
+    std::vector<std::uint32_t> items;  // item numbers of the boxes (empty children are left out)
+    for (const auto& s : def.spheres) {
+        level.spheres.push_back({s.center, s.radius, s.radius * s.radius, s.material});
+        box3 b;
+        b.add(s.center - vec3d(s.radius));
+        b.add(s.center + vec3d(s.radius));
+        level.bounds.add(b);
+        boxes.push_back(to_float_box(b));
+    }
+    for (const auto& t : def.triangles) {
+        level.triangles.push_back(triangle_of(t));
+        box3 b;
+        b.add(t.a), b.add(t.b), b.add(t.c);
+        level.bounds.add(b);
+        boxes.push_back(to_float_box(b));
+    }
+    for (const auto& i : def.instances) {
+        build_level(defs, i.object, defs[size_t(i.object)], levels, built);
+        const level_object& placed = levels[size_t(i.object)];
+        if (placed.bounds.empty()) continue;  // nothing to hit in it
+        const box3 b = of(to_float_box(placed_box(placed.bounds, i.to_parent)));
+        level.children.push_back({i.object, i.from_parent.linear, i.from_parent.offset,
+                                  glm::transpose(i.from_parent.linear)});
+        level.bounds.add(b);
+        boxes.push_back(to_float_box(b));
+    }
+    if (!boxes.empty()) level.tree = build_bvh(boxes);
+    built[size_t(o)] = true;
+}
+
+// Planes of placed objects, moved to world space for every way they are
+// placed; only objects that hold planes somewhere are walked (the level-10
+// flake has 9^10 ways to place its smallest object, and no plane in it).
+void hoist_planes(const std::vector<object_definition>& defs, const std::vector<expanded_counts>& counts,
+                  const object_definition& def, const affine_transform& to_world, std::vector<plane_item>& out) {
+    const mat3d normals = glm::transpose(inverted(to_world).linear);
+    for (const auto& p : def.planes) {
+        const vec3d n = normals * p.normal;
+        out.push_back({apply(to_world, p.point), normalize(n), n, p.material});
+        if (out.size() > 10000)
+            throw std::invalid_argument("instances place more than 10000 planes: planes are unbounded and tested "
+                                        "one by one; put them at the top level");
+    }
+    for (const auto& i : def.instances)
+        if (counts[size_t(i.object)].planes > 0)
+            hoist_planes(defs, counts, defs[size_t(i.object)], then(i.to_parent, to_world), out);
+}
+
+// ---- the kernels: one ray, one shape ------------------------------------
+
+// The robust sphere test: the perpendicular foot formed before squaring,
+// then the stable root pair (as the specialised path's robust kernel).
+double sphere_t(const sphere_item& s, const vec3d& o, const vec3d& d, double a, double tmin) {
+    const vec3d f = o - s.center;
+    const double half_b = dot(f, d);
+    const vec3d g = f - (half_b / a) * d;
+    const double disc = a * (s.radius2 - dot(g, g));
+    if (!(disc >= 0)) return infinity<double>;
+    const double q = -(half_b + std::copysign(std::sqrt(disc), half_b));
+    const double c = dot(f, f) - s.radius2;
+    const double r1 = c / q, r2 = q / a;
+    const double near = std::min(r1, r2), far = std::max(r1, r2);
+    const double t = near > tmin ? near : far;
+    return t > tmin ? t : infinity<double>;
+}
+
+double triangle_hit_t(const triangle_item& x, const vec3d& o, const vec3d& d, double d_max, double tmin) {
+    const vec3d s = o - x.a, q = cross(s, x.e1);
+    int unsure = 0;
+    const double t = triangle_t(s.x, s.y, s.z, q.x, q.y, q.z, x.e1.x, x.e1.y, x.e1.z, x.e2.x, x.e2.y, x.e2.z, d.x, d.y,
+                                d.z, tmin, x.flat_scale * d_max + flat_tiny<double>(), unsure);
+    if (!unsure) return t;
+    return triangle_t_exact(s.x, s.y, s.z, q.x, q.y, q.z, x.e1.x, x.e1.y, x.e1.z, x.e2.x, x.e2.y, x.e2.z, d.x, d.y, d.z,
+                            tmin, x.a, x.b, x.c);
+}
+
+double plane_hit_t(const plane_item& p, const vec3d& o, const vec3d& d, double tmin) {
+    const vec3d n = p.unit_normal;
+    const double num = dot(n, p.point - o);
+    int unsure = 0;
+    const double t = rt::render_tool::plane_t(num, n.x, n.y, n.z, d.x, d.y, d.z, tmin, unsure);
+    return unsure ? plane_t_exact(num, n.x, n.y, n.z, d.x, d.y, d.z, tmin, p.normal) : t;
+}
+
+// ---- the walk -----------------------------------------------------------
+
+// The ray as the slab tests use it: a zero direction component's
+// reciprocal is huge instead of infinite (never 0 * inf = NaN), the exit
+// widened by a few ulps (Ize 2013), as the specialised path does in float.
+struct slab_ray {
+    vec3d o, inv;
+    slab_ray(const vec3d& origin, const vec3d& d) : o(origin) {
+        for (int a = 0; a < 3; ++a) inv[a] = d[a] == 0 ? std::copysign(1e300, d[a]) : 1 / d[a];
+    }
+    bool enters(const bvh_box& b, double tmin, double tmax) const {
+        double enter = tmin, leave = tmax;
+        for (int a = 0; a < 3; ++a) {
+            const double t0 = (double(b.lo[a]) - o[a]) * inv[a], t1 = (double(b.hi[a]) - o[a]) * inv[a];
+            enter = std::max(enter, std::min(t0, t1));
+            leave = std::min(leave, std::max(t0, t1) * (1 + 8 * std::numeric_limits<double>::epsilon()));
+        }
+        return enter <= leave;
+    }
+};
+
+struct local_hit {
+    double t;
+    int material = -1;
+    vec3d normal{0};  // not normalised: in the space of the object the walk is in
+};
+
+class walker {
+public:
+    explicit walker(const instanced_scene_data& d) : d_(d) {}
+
+    // The closest hit in object o with tmin < t < best.t; true when best was improved.
+    bool closest(int o, const vec3d& org, const vec3d& dir, double tmin, local_hit& best) const {
+        const level_object& level = d_.objects[size_t(o)];
+        if (level.tree.nodes.empty()) return false;
+        const slab_ray slabs(org, dir);
+        const double a = dot(dir, dir), d_max = direction_max(dir.x, dir.y, dir.z);
+        const size_t spheres = level.spheres.size(), triangles = level.triangles.size();
+        bool found = false;
+        std::uint32_t stack[128];
+        int top = 0;
+        stack[top++] = 0;
+        while (top > 0) {
+            const bvh_node& n = level.tree.nodes[stack[--top]];
+            if (!slabs.enters(n.box, tmin, best.t)) continue;
+            if (n.count == 0) {
+                stack[top++] = n.first + 1;
+                stack[top++] = n.first;
+                continue;
+            }
+            for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
+                const size_t item = level.tree.order[k];
+                if (item < spheres) {
+                    const sphere_item& s = level.spheres[item];
+                    const double t = sphere_t(s, org, dir, a, tmin);
+                    if (t < best.t) {
+                        best = {t, s.material, (org + t * dir - s.center) / s.radius};
+                        found = true;
+                    }
+                } else if (item < spheres + triangles) {
+                    const triangle_item& x = level.triangles[item - spheres];
+                    const double t = triangle_hit_t(x, org, dir, d_max, tmin);
+                    if (t < best.t) {
+                        const vec3d normal = cross(x.e1, x.e2);
+                        best = {t, x.material, dot(normal, dir) > 0 ? -normal : normal};
+                        found = true;
+                    }
+                } else {
+                    // Into the placed object's space: the direction is not
+                    // normalised, so t (and best.t, the range's end) mean
+                    // the same point there.
+                    const child_item& c = level.children[item - spheres - triangles];
+                    local_hit inside = best;
+                    if (closest(c.object, c.from_linear * org + c.from_offset, c.from_linear * dir, tmin, inside)) {
+                        best = {inside.t, inside.material, c.normal_matrix * inside.normal};
+                        found = true;
+                    }
+                }
+            }
+        }
+        return found;
+    }
+
+    // Is anything in object o hit with tmin < t < tmax?
+    bool blocked(int o, const vec3d& org, const vec3d& dir, double tmin, double tmax) const {
+        const level_object& level = d_.objects[size_t(o)];
+        if (level.tree.nodes.empty()) return false;
+        const slab_ray slabs(org, dir);
+        const double a = dot(dir, dir), d_max = direction_max(dir.x, dir.y, dir.z);
+        const size_t spheres = level.spheres.size(), triangles = level.triangles.size();
+        std::uint32_t stack[128];
+        int top = 0;
+        stack[top++] = 0;
+        while (top > 0) {
+            const bvh_node& n = level.tree.nodes[stack[--top]];
+            if (!slabs.enters(n.box, tmin, tmax)) continue;
+            if (n.count == 0) {
+                stack[top++] = n.first + 1;
+                stack[top++] = n.first;
+                continue;
+            }
+            for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
+                const size_t item = level.tree.order[k];
+                if (item < spheres) {
+                    if (sphere_t(level.spheres[item], org, dir, a, tmin) < tmax) return true;
+                } else if (item < spheres + triangles) {
+                    if (triangle_hit_t(level.triangles[item - spheres], org, dir, d_max, tmin) < tmax) return true;
+                } else {
+                    const child_item& c = level.children[item - spheres - triangles];
+                    if (blocked(c.object, c.from_linear * org + c.from_offset, c.from_linear * dir, tmin, tmax))
+                        return true;
+                }
+            }
+        }
+        return false;
+    }
+
+private:
+    const instanced_scene_data& d_;
+};
+
+}  // namespace
+
+instanced_scene::instanced_scene(const scene_description& scene) : data_(std::make_unique<instanced_scene_data>()) {
+    const stopwatch clock;
+    instanced_scene_data& d = *data_;
+    // The top level is one more object: the world's spheres and triangles and its instances.
+    std::vector<object_definition> defs = scene.objects;
+    object_definition top;
+    top.name = scene.source;
+    top.spheres = scene.world.spheres;
+    top.triangles = scene.world.triangles;
+    top.instances = scene.instances;
+    defs.push_back(std::move(top));
+    d.top = int(defs.size()) - 1;
+    d.objects.resize(defs.size());
+    std::vector<bool> built(defs.size(), false);
+    build_level(defs, d.top, defs[size_t(d.top)], d.objects, built);
+    for (const auto& p : scene.world.planes)
+        d.planes.push_back({p.point, normalize(p.normal), p.normal, p.material});
+    const std::vector<expanded_counts> counts = expanded_counts_of(defs);
+    hoist_planes(defs, counts, object_definition{"", {}, {}, {}, scene.instances}, affine_transform{}, d.planes);
+    d.expanded = counts[size_t(d.top)];
+    d.expanded.planes = scene.world.planes.size() + (d.planes.size() - scene.world.planes.size());
+    for (size_t o = 0; o < defs.size(); ++o) {
+        if (!built[o]) continue;
+        d.stored_spheres += d.objects[o].spheres.size();
+        d.stored_triangles += d.objects[o].triangles.size();
+        d.placements += d.objects[o].children.size();
+    }
+    d.build_seconds = clock.seconds();
+}
+
+instanced_scene::~instanced_scene() = default;
+instanced_scene::instanced_scene(instanced_scene&&) noexcept = default;
+
+double instanced_scene::build_seconds() const { return data_->build_seconds; }
+
+size_t instanced_scene::bytes() const {
+    size_t b = data_->planes.size() * sizeof(plane_item);
+    for (const auto& o : data_->objects) b += o.bytes();
+    return b;
+}
+
+std::string instanced_scene::describe() const {
+    const instanced_scene_data& d = *data_;
+    size_t used = 0;
+    for (const auto& o : d.objects) used += !o.tree.nodes.empty();
+    char line[600];
+    std::snprintf(line, sizeof line,
+                  "two-level tree (instances): %zu objects, each with its own tree, %zu instances in them (instances of "
+                  "instances); expanded: %llu spheres, %llu triangles, %llu planes; stored: %zu spheres, %zu "
+                  "triangles; %.3f MB of trees and shapes, built in %.1f ms; double, robust sphere test, rays moved "
+                  "into each instance's space",
+                  used, d.placements, (unsigned long long)d.expanded.spheres, (unsigned long long)d.expanded.triangles,
+                  (unsigned long long)d.expanded.planes, d.stored_spheres, d.stored_triangles, double(bytes()) / 1e6,
+                  d.build_seconds * 1e3);
+    return line;
+}
+
+instanced_scene::hit instanced_scene::closest(const ray<double>& r, double tmin, double tmax) const {
+    const instanced_scene_data& d = *data_;
+    local_hit best{tmax};
+    walker(d).closest(d.top, r.origin, r.direction, tmin, best);
+    for (const auto& p : d.planes) {
+        const double t = plane_hit_t(p, r.origin, r.direction, tmin);
+        if (t < best.t) best = {t, p.material, dot(p.unit_normal, r.direction) > 0 ? -p.unit_normal : p.unit_normal};
+    }
+    hit h;
+    if (best.material < 0) return h;
+    h.t = best.t;
+    h.material = best.material;
+    h.normal = normalize(best.normal);
+    return h;
+}
+
+bool instanced_scene::blocked(const ray<double>& r, double tmin, double tmax) const {
+    const instanced_scene_data& d = *data_;
+    for (const auto& p : d.planes)
+        if (plane_hit_t(p, r.origin, r.direction, tmin) < tmax) return true;
+    return walker(d).blocked(d.top, r.origin, r.direction, tmin, tmax);
+}
+
+image render_instanced(const scene_description& description, const instanced_scene& built, int width, int height,
+                       render_stats& stats) {
+    const scene_camera<double> camera(description.camera, width, height);
+    const double tmin = camera.primary_range().min;
+    const rt::scene<double>& world = description.world;
+    image img(width, height);
+    std::atomic<long> shadow_rays{0};
+    for_each_row(height, [&](int row) {
+        long shadows = 0;
+        ch06::occlusion_test<double> occluded = [&](const ray<double>& r, const interval<double>& range) {
+            ++shadows;
+            return built.blocked(r, range.min, range.max);
+        };
+        for (int col = 0; col < width; ++col) {
+            const ray<double> r = camera.primary_ray(col, row);
+            const instanced_scene::hit h = built.closest(r, tmin, infinity<double>);
+            color& out = img.at(col, row);
+            if (h.material < 0) {
+                out = world.background;
+                continue;
+            }
+            const vec3d point = r.origin + h.t * r.direction;
+            const material m = material_at(world.materials[size_t(h.material)], point);
+            out = world.lights.empty() ? unlit_colour(m, h.normal, r.direction)
+                                       : ch06::shade(point, h.normal, -r.direction, m, world.lights, world.ambient,
+                                                     occluded);
+        }
+        shadow_rays += shadows;
+    });
+    stats.rays = long(width) * long(height) + shadow_rays.load();
+    return img;
+}
+
+// ---- flattening ---------------------------------------------------------
+
+namespace {
+
+// A similarity (rotation, mirror, uniform scale): perpendicular columns of
+// one length, to rounding; its scale factor, or 0 when it is not one.
+double similarity_scale(const mat3d& m) {
+    const double s = length(m[0]);
+    const double tol = 1e-9 * s * s;
+    for (int i = 0; i < 3; ++i)
+        if (std::fabs(dot(m[i], m[i]) - s * s) > tol || std::fabs(dot(m[i], m[(i + 1) % 3])) > tol) return 0;
+    return s;
+}
+
+void flatten_into(const std::vector<object_definition>& defs, const object_definition& def,
+                  const affine_transform& to_world, scene<double>& out) {
+    const double scale = def.spheres.empty() ? 1 : similarity_scale(to_world.linear);
+    if (!(scale > 0))
+        throw std::invalid_argument(def.name + ": a sphere placed by a transform that is not a similarity is an "
+                                    "ellipsoid, and a flat scene has only spheres");
+    for (const auto& s : def.spheres) out.spheres.push_back({apply(to_world, s.center), s.radius * scale, s.material});
+    for (const auto& t : def.triangles)
+        out.triangles.push_back({apply(to_world, t.a), apply(to_world, t.b), apply(to_world, t.c), t.material});
+    const mat3d normals = glm::transpose(inverted(to_world).linear);
+    for (const auto& p : def.planes) out.planes.push_back({apply(to_world, p.point), normals * p.normal, p.material});
+    for (const auto& i : def.instances) flatten_into(defs, defs[size_t(i.object)], then(i.to_parent, to_world), out);
+}
+
+}  // namespace
+
+scene_description flattened(const scene_description& scene) {
+    scene_description flat = scene;
+    flat.objects.clear();
+    flat.instances.clear();
+    const std::vector<expanded_counts> counts = expanded_counts_of(scene.objects);
+    std::uint64_t spheres = 0, triangles = 0;
+    for (const auto& i : scene.instances) {
+        spheres = saturating_add(spheres, counts[size_t(i.object)].spheres);
+        triangles = saturating_add(triangles, counts[size_t(i.object)].triangles);
+    }
+    if (saturating_add(spheres, triangles) > 100'000'000)
+        throw std::invalid_argument("the scene expands to more than 100 million shapes: too many to store flat");
+    flat.world.spheres.reserve(flat.world.spheres.size() + spheres);
+    flat.world.triangles.reserve(flat.world.triangles.size() + triangles);
+    for (const auto& i : scene.instances) flatten_into(scene.objects, scene.objects[size_t(i.object)], i.to_parent, flat.world);
+    return flat;
+}
+
+}  // namespace rt::render_tool

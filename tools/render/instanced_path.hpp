@@ -1,0 +1,74 @@
+// instanced_path.hpp — rendering a scene with instances: a two-level tree
+// (instructor side; chapter 10's exercises are the course's version).
+//
+// Every object a scene file defines (common/instances.hpp) gets its own tree
+// over its own items: its spheres, its triangles and the instances it
+// places, each instance's box being the box of the placed object's own
+// tree, transformed corner by corner into this object's space and widened
+// against rounding. The scene's top level is one more such object. A ray
+// meets an instance by being moved into the placed object's space, by the
+// inverse transform, with its direction NOT normalised: the point
+// o + t d maps to o' + t d', the same t, so the closest hit so far and the
+// ray's range carry over unchanged in and out of instances. A hit's normal
+// comes back by the inverse transpose. Instances of instances are the same
+// step again, one level down: the level-10 sphereflake is eleven small
+// trees, not four billion spheres.
+//
+// Planes (unbounded, so in no tree) inside placed objects are moved out to
+// the top level once, for each way they are placed.
+#pragma once
+
+#include "scene_plan.hpp"
+
+#include "common/image.hpp"
+#include "common/scene_file.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rt::render_tool {
+
+struct instanced_scene_data;  // the trees (instanced_path.cpp)
+
+// The scene's two-level tree, built once.
+class instanced_scene {
+public:
+    explicit instanced_scene(const scene_description& scene);
+    ~instanced_scene();
+    instanced_scene(instanced_scene&&) noexcept;
+
+    // The plan in one line: objects, instances, what they expand to, memory.
+    std::string describe() const;
+    double build_seconds() const;
+    size_t bytes() const;
+
+    // What one ray hits: t, the material, the unit normal in world space
+    // (a sphere's outward, a triangle's or plane's facing the ray), and the
+    // number of the shape in the object that holds it (for tests).
+    struct hit {
+        double t = 0;
+        int material = -1;  // -1: a miss
+        vec3d normal{0};
+    };
+    hit closest(const ray<double>& r, double tmin, double tmax) const;
+    bool blocked(const ray<double>& r, double tmin, double tmax) const;
+
+    const instanced_scene_data& data() const { return *data_; }
+
+private:
+    std::unique_ptr<instanced_scene_data> data_;
+};
+
+// Renders the scene (shaded with chapter 06's shade() when lit, with
+// shadow rays through the same tree), in double.
+image render_instanced(const scene_description& scene, const instanced_scene& built, int width, int height,
+                       render_stats& stats);
+
+// The scene with every instance expanded into world-space shapes: spheres
+// under similarity transforms only (anything else is an ellipsoid: throws
+// std::invalid_argument). For comparing flat with instanced renders.
+scene_description flattened(const scene_description& scene);
+
+}  // namespace rt::render_tool
