@@ -62,6 +62,7 @@ struct level_object {
     std::vector<sphere_item> spheres;
     std::vector<triangle_item> triangles;
     std::vector<child_item> children;
+    std::vector<bvh_box> child_boxes;  // in this object's space, as the tree holds them
     bvh_tree tree;
     box3 bounds;  // of everything in it, in its own space (empty: nothing to hit)
     size_t bytes() const {
@@ -157,6 +158,7 @@ void build_level(const std::vector<object_definition>& defs, int o, const object
                                   glm::transpose(i.from_parent.linear)});
         level.bounds.add(b);
         boxes.push_back(to_float_box(b));
+        level.child_boxes.push_back(boxes.back());
     }
     if (!boxes.empty()) level.tree = build_bvh(boxes);
     built[size_t(o)] = true;
@@ -371,6 +373,13 @@ instanced_scene::instanced_scene(const scene_description& scene) : data_(std::ma
 
 instanced_scene::~instanced_scene() = default;
 instanced_scene::instanced_scene(instanced_scene&&) noexcept = default;
+
+std::vector<instanced_scene::placed_box> instanced_scene::top_instance_boxes() const {
+    std::vector<placed_box> out;
+    for (const bvh_box& b : data_->objects[size_t(data_->top)].child_boxes)
+        out.push_back({vec3d(b.lo[0], b.lo[1], b.lo[2]), vec3d(b.hi[0], b.hi[1], b.hi[2])});
+    return out;
+}
 
 double instanced_scene::build_seconds() const { return data_->build_seconds; }
 

@@ -55,7 +55,13 @@ public:
     hit closest(const ray<double>& r, double tmin, double tmax) const;
     bool blocked(const ray<double>& r, double tmin, double tmax) const;
 
-    const instanced_scene_data& data() const { return *data_; }
+    // The boxes of the top level's instances in world space, as its tree
+    // holds them (float, rounded outwards and widened), in the order of
+    // scene_description::instances (an instance of an empty object has none).
+    struct placed_box {
+        vec3d lo, hi;
+    };
+    std::vector<placed_box> top_instance_boxes() const;
 
 private:
     std::unique_ptr<instanced_scene_data> data_;
