@@ -281,7 +281,7 @@ public:
             if (auto* i = member(j, "intensity")) light.intensity = read_color(*i, p + ".intensity");
             if (auto* r = member(j, "radius"))
                 light.radius = read_number_in(*r, p + ".radius", 0, false, max_coordinate,
-                                              "a radius >= 0 (0: a point light; > 0: a sphere light, chapter 11)");
+                                              "a radius >= 0 (0 for a point light, above 0 for a sphere light, chapter 11)");
             d.world.lights.push_back(light);
         });
         read_named_objects(d);
@@ -441,7 +441,7 @@ private:
             if (!pinhole && member(j, lens_key))
                 where_.fail_at_key(path + "." + lens_key, std::string(lens_key) +
                                                               " belongs to a pinhole camera with a thin lens "
-                                                              "(chapter 11); an orthographic camera has no lens");
+                                                              "(chapter 11): an orthographic camera has no lens");
         c.eye = read_point(required(j, path, "eye", "the camera position [x, y, z]"), path + ".eye");
         c.look_at = read_point(required(j, path, "look_at", "the point the camera looks at [x, y, z]"),
                                path + ".look_at");
