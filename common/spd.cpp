@@ -1,6 +1,8 @@
 // spd.cpp — the three Standard Procedural Databases (see spd.hpp).
 #include "spd.hpp"
 
+#include "render.hpp"  // for_each_row: the project's thread pool
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -105,25 +107,73 @@ std::vector<vec3d> child_directions() {
     return dirs;
 }
 
-// A sphere and, `levels` deep, its children. The recursion is only `size`
-// deep (at most 9 calls on the stack); the work is in the leaves.
-void flake(const vec3d& center, double radius, const vec3d& up, int levels, const std::vector<vec3d>& dirs,
-           spd_sink& out) {
-    out.sphere(center, radius, 1);
-    if (levels == 0) return;
-    vec3d u, v;
-    frame_around(up, u, v);
-    double child_radius = radius / 3;
-    for (const vec3d& d : dirs) {
-        vec3d dir = d.x * u + d.y * v + d.z * up;
-        flake(center + (radius + child_radius) * dir, child_radius, dir, levels - 1, dirs, out);
-    }
+// A sphere's k-th child: a third of its radius, touching it in direction
+// dirs[k] of the parent's frame (w = up: away from the grandparent).
+struct flake_sphere {
+    vec3d center, up;
+    double radius;
+};
+flake_sphere child_of(const flake_sphere& parent, const vec3d& u, const vec3d& v, const vec3d& d) {
+    const vec3d dir = d.x * u + d.y * v + d.z * parent.up;
+    const double child_radius = parent.radius / 3;
+    return {parent.center + (parent.radius + child_radius) * dir, dir, child_radius};
 }
 
+// Spheres in a flake `levels` deep: 1 + 9 + ... + 9^levels.
+std::uint64_t flake_count(int levels) { return levels < 0 ? 0 : 1 + 9 * flake_count(levels - 1); }
+
+// A sphere and, `levels` deep, its children, depth first: emit(i, sphere)
+// with i its place in that order counted from `first` (the k-th child's
+// subtree starts at first + 1 + k * flake_count(levels - 1)), so a
+// subtree can be generated on its own, anywhere, into its own slots. The
+// recursion is only `size` deep (at most 9 calls on the stack); the work is
+// in the leaves.
+template <class Emit>
+void flake(const flake_sphere& s, int levels, std::uint64_t first, const std::vector<vec3d>& dirs, Emit& emit) {
+    emit(first, s);
+    if (levels == 0) return;
+    vec3d u, v;
+    frame_around(s.up, u, v);
+    const std::uint64_t below = flake_count(levels - 1);
+    for (size_t k = 0; k < dirs.size(); ++k)
+        flake(child_of(s, u, v, dirs[k]), levels - 1, first + 1 + k * below, dirs, emit);
+}
+
+// A root sphere of radius 0.5 at the origin resting on the ground z = -0.5.
+const flake_sphere flake_root{vec3d(0, 0, 0), vec3d(0, 0, 1), 0.5};
+const vec3d ground_point(0, 0, -0.5), ground_normal(0, 0, 1);
+
 void generate_balls(int size, spd_sink& out) {
-    // A root sphere of radius 0.5 at the origin resting on the ground z = -0.5.
-    out.plane(vec3d(0, 0, -0.5), vec3d(0, 0, 1), 0);
-    flake(vec3d(0, 0, 0), 0.5, vec3d(0, 0, 1), size, child_directions(), out);
+    out.plane(ground_point, ground_normal, 0);
+    auto emit = [&](std::uint64_t, const flake_sphere& s) { out.sphere(s.center, s.radius, 1); };
+    flake(flake_root, size, 0, child_directions(), emit);
+}
+
+// The same spheres written straight into spheres[0 .. flake_count(size)),
+// on every core: the 81 subtrees two levels down (9^7 spheres each at size
+// 8) are one task each. Every sphere is computed by the same arithmetic
+// from the same parent as in the serial walk, so the array is the same bit
+// for bit whatever the number of threads.
+void generate_balls_parallel(int size, sphere<double>* spheres, int material) {
+    const std::vector<vec3d> dirs = child_directions();
+    auto write = [&](std::uint64_t i, const flake_sphere& s) { spheres[i] = {s.center, s.radius, material}; };
+    const int split = std::min(size, 2);  // levels generated here, above the tasks
+    std::vector<std::pair<flake_sphere, std::uint64_t>> tasks;
+    auto collect = [&](auto& self, const flake_sphere& s, int depth, std::uint64_t first) -> void {
+        if (depth == split) {
+            tasks.emplace_back(s, first);
+            return;
+        }
+        write(first, s);
+        vec3d u, v;
+        frame_around(s.up, u, v);
+        const std::uint64_t below = flake_count(size - depth - 1);
+        for (size_t k = 0; k < dirs.size(); ++k) self(self, child_of(s, u, v, dirs[k]), depth + 1, first + 1 + k * below);
+    };
+    collect(collect, flake_root, 0, 0);
+    for_each_row(int(tasks.size()), [&](int t) {
+        flake(tasks[size_t(t)].first, size - split, tasks[size_t(t)].second, dirs, write);
+    });
 }
 
 // ---- tetra -------------------------------------------------------------
@@ -339,6 +389,15 @@ spd_counts spd_generate_instanced(spd_database db, int size, object_definition& 
 }
 
 spd_counts spd_generate(spd_database db, int size, scene<double>& into, const std::vector<int>& materials) {
+    if (db == spd_database::balls && size >= 1 && size <= spd_max_size(db)) {
+        // 48 million spheres at size 8: generated on every core, in place.
+        const size_t first = into.spheres.size();
+        const int ground = materials.at(0), flake_material = materials.at(1);
+        into.planes.push_back({ground_point, ground_normal, ground});
+        into.spheres.resize(first + flake_count(size));
+        generate_balls_parallel(size, into.spheres.data() + first, flake_material);
+        return spd_expected_counts(db, size);
+    }
     if (size >= 1 && size <= spd_max_size(db)) {  // else the call below throws
         spd_counts expected = spd_expected_counts(db, size);
         into.spheres.reserve(into.spheres.size() + expected.spheres);

@@ -62,6 +62,32 @@ TEST_CASE("each generator produces exactly the counts of its formula at small si
         }
 }
 
+TEST_CASE("sphereflake: the scene's generator (on every core, in place) gives the sink's spheres bit for bit") {
+    // spd_generate into a scene writes each subtree into its own slots from
+    // a thread of the pool; the order and every coordinate must be those of
+    // the serial depth-first walk, whatever the number of threads.
+    for (int size : {1, 2, 3, 5}) {
+        CAPTURE(size);
+        collect serial;
+        spd_generate(spd_database::balls, size, serial);
+        scene<double> s;
+        s.spheres.push_back({vec3d(9, 9, 9), 1, 7});  // appended after what is there
+        const spd_counts got = spd_generate(spd_database::balls, size, s, {3, 4});
+        CHECK(got.spheres == serial.spheres.size());
+        CHECK(got.planes == 1);
+        REQUIRE(s.spheres.size() == serial.spheres.size() + 1);
+        REQUIRE(s.planes.size() == 1);
+        CHECK(s.planes[0].material == 3);
+        CHECK(s.planes[0].point == serial.planes[0].point);
+        size_t differ = 0;
+        for (size_t i = 0; i < serial.spheres.size(); ++i) {
+            const auto &a = s.spheres[i + 1], &b = serial.spheres[i];
+            differ += !(a.center == b.center && a.radius == b.radius && a.material == 4);
+        }
+        CHECK(differ == 0);
+    }
+}
+
 TEST_CASE("sizes out of range are refused with the range") {
     collect c;
     CHECK_THROWS_WITH(spd_generate(spd_database::balls, 9, c), doctest::Contains("from 1 to 8"));
