@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <mutex>
 
@@ -67,20 +68,44 @@ struct bin_stats {
 struct binner {
     int axis;
     float low, scale;
-    int operator()(const record& r) const {
-        float c[3];
-        centre(r, c);
-        return std::clamp(int((c[axis] - low) * scale), 0, bins - 1);
-    }
+    int of(float centre) const { return std::clamp(int((centre - low) * scale), 0, bins - 1); }
+    int operator()(const record& r) const { return of(0.5f * (r.box.lo[axis] + r.box.hi[axis])); }
+};
+
+// Four floats, gcc's vector extension (SSE, part of every x86-64): a
+// record's low corner and its high corner each load as one, so the pass
+// below grows a bin's box and its centres' box with four instructions
+// instead of twelve; it is the build's hottest loop (every record, every
+// level). Lane 3 holds whatever follows in the record and is never read.
+// The selects are std::min's and std::max's (b < a ? b : a), so the bins,
+// and the tree, are the same bit for bit as with the scalar grow().
+typedef float f4 __attribute__((vector_size(16)));
+struct f4_bin {
+    f4 lo, hi, centre_lo, centre_hi;
 };
 
 void bin_range(const record* r, size_t n, const binner& which, bin_stats& s) {
+    const float inf = std::numeric_limits<float>::infinity();
+    const f4 up = {inf, inf, inf, inf}, down = -up;
+    std::array<f4_bin, bins> acc;
+    acc.fill(f4_bin{up, down, up, down});
     for (size_t i = 0; i < n; ++i) {
-        const int b = which(r[i]);
-        float c[3];
-        centre(r[i], c);
-        grow(s.box[size_t(b)], r[i].box), grow(s.centres[size_t(b)], c), ++s.count[size_t(b)];
+        f4 lo, hi;
+        std::memcpy(&lo, r[i].box.lo, sizeof lo);  // lo[0..2], hi[0]
+        std::memcpy(&hi, r[i].box.hi, sizeof hi);  // hi[0..2], id
+        const f4 c = 0.5f * (lo + hi);             // lanes 0..2: centre(), bit for bit
+        const auto b = size_t(which.of(c[which.axis]));
+        f4_bin& a = acc[b];
+        a.lo = lo < a.lo ? lo : a.lo, a.hi = a.hi < hi ? hi : a.hi;
+        a.centre_lo = c < a.centre_lo ? c : a.centre_lo, a.centre_hi = a.centre_hi < c ? c : a.centre_hi;
+        ++s.count[b];
     }
+    for (size_t b = 0; b < size_t(bins); ++b)
+        for (int k = 0; k < 3; ++k) {
+            s.box[b].lo[k] = std::min(s.box[b].lo[k], acc[b].lo[k]), s.box[b].hi[k] = std::max(s.box[b].hi[k], acc[b].hi[k]);
+            s.centres[b].lo[k] = std::min(s.centres[b].lo[k], acc[b].centre_lo[k]);
+            s.centres[b].hi[k] = std::max(s.centres[b].hi[k], acc[b].centre_hi[k]);
+        }
 }
 
 // The same, split into chunks over the thread pool for big ranges.
