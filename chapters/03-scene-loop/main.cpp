@@ -31,8 +31,9 @@ image render_scene(const program_options& opt) {
         // an orthographic camera from a scene file takes t > 0.
         auto hit = ch03::closest_hit(world.object_count(), intersect, r, camera.primary_range());
         if (!hit) return world.background;
-        // How squarely the surface faces the viewer: 1 head-on, 0 at the silhouette.
-        const float facing = float(std::max(T(0), -dot(hit->normal, normalize(r.direction))));
+        // How squarely the surface faces the viewer: 1 head-on, 0 at the silhouette
+        // (the normal on the viewer's side, so the inside of a sphere reads too).
+        const float facing = float(std::max(T(0), -dot(hit->facing_normal(r), normalize(r.direction))));
         return material_at(world, *hit).diffuse * (0.3f + 0.7f * facing);
     });
 }

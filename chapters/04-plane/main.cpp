@@ -38,7 +38,8 @@ image render_scene(const program_options& opt) {
         // an orthographic camera from a scene file takes t > 0.
         auto hit = ch03::closest_hit(world.object_count(), intersect, r, camera.primary_range());
         if (!hit) return world.background;
-        const float lambert = float(std::max(T(0), dot(hit->normal, to_light)));
+        // The normal on the viewer's side: the ground seen from below is lit like from above.
+        const float lambert = float(std::max(T(0), dot(hit->facing_normal(r), to_light)));
         return material_at(world, *hit).diffuse * (0.2f + 0.8f * lambert);
     });
 }

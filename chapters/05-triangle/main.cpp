@@ -52,7 +52,8 @@ image render_scene(const program_options& opt) {
             const vec3<T> w = ch05::barycentric(world.triangles[o.index], hit->point);
             if (std::min({w.x, w.y, w.z}) < T(0.025)) albedo *= 0.35f;
         }
-        const float lambert = float(std::max(T(0), dot(hit->normal, to_light)));
+        // The normal on the viewer's side: a face seen from behind is lit like from the front.
+        const float lambert = float(std::max(T(0), dot(hit->facing_normal(r), to_light)));
         return albedo * (0.2f + 0.8f * lambert);
     });
 }

@@ -45,7 +45,8 @@ image render_scene(const program_options& opt, long& rays) {
         const auto hit = ch03::closest_hit(world.object_count(), intersect, r, camera.primary_range());
         if (!hit) return world.background;
         const material m = material_at(world, *hit);  // the checker pattern resolved
-        return ch06::shade(hit->point, hit->normal, -r.direction, m, world.lights, world.ambient, occluded);
+        // Shade the side the viewer sees: the one face rule (common/hit_record.hpp).
+        return ch06::shade(hit->point, hit->facing_normal(r), -r.direction, m, world.lights, world.ambient, occluded);
     });
     rays = long(opt.width) * opt.height + shadow_rays.load();
     return img;

@@ -1,6 +1,7 @@
 // Tests of the shared core: the conventions every chapter relies on.
 #include "common/camera.hpp"
 #include "common/error_metrics.hpp"
+#include "common/hit_record.hpp"
 #include "common/image.hpp"
 #include "common/image_compare.hpp"
 #include "common/chapter_scenes.hpp"
@@ -38,6 +39,29 @@ TEST_CASE_TEMPLATE("ray: at(t) walks along the direction", T, RT_SCALARS) {
     ray<T> r{{1, 2, 3}, {0, 0, -2}};
     CHECK(r.at(T(0)) == vec3<T>(1, 2, 3));
     CHECK(r.at(T(1.5)) == vec3<T>(1, 2, 0));
+}
+
+TEST_CASE_TEMPLATE("hit_record: one face rule, the side the ray arrives on", T, RT_SCALARS) {
+    // The ground y = 0, whose outward normal is +y, hit from above and from below.
+    hit_record<T> hit;
+    hit.point = vec3<T>(0, 0, 0);
+    hit.normal = vec3<T>(0, 1, 0);
+    const ray<T> from_above{{0, 2, 1}, {0, -2, -1}}, from_below{{0, -2, 1}, {0, 2, -1}};
+    CHECK(hit.front_face(from_above));
+    CHECK(hit.facing_normal(from_above) == vec3<T>(0, 1, 0));
+    CHECK_FALSE(hit.front_face(from_below));
+    CHECK(hit.facing_normal(from_below) == vec3<T>(0, -1, 0));
+    // The facing normal is always against the ray, whichever side it came from.
+    CHECK(dot(hit.facing_normal(from_above), from_above.direction) < T(0));
+    CHECK(dot(hit.facing_normal(from_below), from_below.direction) < T(0));
+    // Turning is the rule's job alone, so asking again changes nothing: a normal already on the
+    // ray's side stays there (a second flip elsewhere would be the only way to get it wrong).
+    CHECK(facing_normal(hit.facing_normal(from_below), from_below.direction) == hit.facing_normal(from_below));
+    // The member functions and the vector form are the same rule.
+    CHECK(hit.front_face(from_below) == front_face(hit.normal, from_below.direction));
+    // A ray in the tangent plane (dot 0) counts as a back face; NaN gives no front face either.
+    CHECK_FALSE(front_face(hit.normal, vec3<T>(1, 0, 0)));
+    CHECK_FALSE(front_face(hit.normal, vec3<T>(0, std::numeric_limits<T>::quiet_NaN(), 0)));
 }
 
 TEST_CASE_TEMPLATE("pinhole camera: the image plane is at t = 1 and row 0 is the top", T, RT_SCALARS) {

@@ -161,10 +161,10 @@ struct context {
             closest_hits<T, SM, Planes, Tris, false>(soa, p, tmin, t, object);
     }
 
-    // Unit normal at a hit point of object o (the scene's number), facing the
-    // ray for planes and triangles: from the scene's shapes rounded to T, as
-    // soa_scene stores them.
-    vec3<T> normal(size_t o, const vec3<T>& point, const vec3<T>& direction) const {
+    // Unit outward normal at a hit point of object o (the scene's number), as
+    // the chapters' exercises report it: from the scene's shapes rounded to T,
+    // as soa_scene stores them.
+    vec3<T> outward_normal(size_t o, const vec3<T>& point) const {
         if (o < soa.sphere_count) {
             const sphere<double>& x = world.spheres[o];
             return (point - convert<T>(x.center)) / T(x.radius);
@@ -177,7 +177,7 @@ struct context {
             const vec3<T> a = convert<T>(x.a);
             n = normalize(cross(convert<T>(x.b) - a, convert<T>(x.c) - a));
         }
-        return dot(n, direction) > T(0) ? -n : n;
+        return n;
     }
 };
 
@@ -216,7 +216,8 @@ image render_with(const scene_description& d, int width, int height, bool tree, 
                 }
                 const vec3<T> origin(p.ox[k], p.oy[k], p.oz[k]), direction(p.dx[k], p.dy[k], p.dz[k]);
                 const vec3<T> point = origin + t[k] * direction;
-                const vec3<T> n = ctx.normal(size_t(object[k]), point, direction);
+                // The side the viewer sees, by the chapters' one face rule (common/hit_record.hpp).
+                const vec3<T> n = facing_normal(ctx.outward_normal(size_t(object[k]), point), direction);
                 const material m = ctx.material_at_hit(size_t(object[k]), point);
                 if constexpr (Lights)
                     out = ch06::shade(point, n, -direction, m, d.world.lights, d.world.ambient, occluded);

@@ -51,8 +51,9 @@ image render_typed(const scene_description& d, bool use_tree, int width, int hei
         const auto hit = closest(r, camera.primary_range());
         if (!hit) return world.background;
         const material m = material_at(world, *hit);
-        if (world.lights.empty()) return unlit_colour(m, hit->normal, r.direction);
-        return ch06::shade(hit->point, hit->normal, -r.direction, m, world.lights, world.ambient, occluded);
+        const vec3<T> n = hit->facing_normal(r);  // the side the viewer sees, as the chapters shade it
+        if (world.lights.empty()) return unlit_colour(m, n, r.direction);
+        return ch06::shade(hit->point, n, -r.direction, m, world.lights, world.ambient, occluded);
     });
     stats.rays = long(width) * long(height) + shadow_rays.load();
     return img;
