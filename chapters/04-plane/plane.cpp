@@ -10,7 +10,7 @@ template <class T>
 std::optional<hit_record<T>> intersect_plane(const plane<T>& p, const ray<T>& r, const interval<T>& range) {
     // Substitute r(t) into  (x - p.point) . n = 0  and solve for t.
     // Before dividing by d . n, ask what it means when d . n is zero.
-    // Fill in t, point and a unit normal that faces the ray.
+    // Fill in t, point and the plane's normal made unit length.
     (void)p;
     (void)r;
     (void)range;

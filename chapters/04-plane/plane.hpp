@@ -28,9 +28,12 @@ namespace rt::ch04 {
 //   the hit if its t lies in (range.min, range.max), else std::nullopt:
 //     t       ray parameter of the crossing
 //     point   r.at(t)
-//     normal  the plane's unit normal, turned to face the ray's origin
-//             (dot(normal, r.direction) < 0), so a plane hit from behind
-//             is shaded like one hit from the front
+//     normal  the plane's own normal p.normal / |p.normal|, from either
+//             side: this is the plane's outward side. A ray from behind
+//             (d . n > 0) gets the same normal; hit.front_face(r) is then
+//             false and hit.facing_normal(r) the negative, so it is shaded
+//             like a plane hit from the front (common/hit_record.hpp: one
+//             rule for every shape)
 //     object  left at -1
 //   A ray parallel to the plane (including one lying in it) is a miss: never
 //   a NaN, never an infinity, never a division by zero that passes as a hit.

@@ -60,9 +60,10 @@ std::optional<hit_record<T>> intersect_plane(const plane<T>& p, const ray<T>& r,
     hit_record<T> hit;
     hit.t = t;
     hit.point = r.at(t);
-    // Turn the normal against the ray: a plane seen from below is shaded
-    // like one seen from above.
-    hit.normal = facing < T(0) ? n : -n;
+    // The plane's own normal, from whichever side the ray comes: which side
+    // that is, is hit.front_face(r) (common/hit_record.hpp), decided once for
+    // every shape.
+    hit.normal = n;
     return hit;
 }
 

@@ -61,12 +61,14 @@ bool is_unit(const vec3<T>& v) {
     return std::fabs(std::sqrt(x * x + y * y + z * z) - 1) <= tolerance<T>();
 }
 
-// The normal has unit length, faces the ray and is parallel to the plane's normal.
+// The normal is the plane's own, at unit length: it points the way p.normal
+// does, whichever side the ray comes from (the side is hit.front_face(r),
+// common/hit_record.hpp's rule, not the exercise's business).
 template <class T>
-bool good_normal(const hit_record<T>& hit, const plane<T>& p, const ray<T>& r) {
-    if (!is_unit(hit.normal) || !(dot(hit.normal, r.direction) < T(0))) return false;
+bool good_normal(const hit_record<T>& hit, const plane<T>& p) {
+    if (!is_unit(hit.normal)) return false;
     const vec3<long double> n = convert<long double>(p.normal), h = convert<long double>(hit.normal);
-    const long double cos_angle = std::fabs(dot(n, h)) / std::sqrt(dot(n, n));
+    const long double cos_angle = dot(n, h) / std::sqrt(dot(n, n));
     return std::fabs(cos_angle - 1) <= 10 * tolerance<T>();
 }
 
@@ -136,21 +138,22 @@ TEST_CASE_TEMPLATE("hidden: nearly parallel rays still hit far away", T, RT_SCAL
     CHECK_MESSAGE(ok, "only d . n == 0 is parallel: a small d . n is a genuine hit far away, not a miss");
 }
 
-TEST_CASE_TEMPLATE("hidden: a plane hit from behind gets a flipped normal", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("hidden: a plane hit from behind keeps its own normal", T, RT_SCALARS) {
     const plane<T> ground{{0, 0, 0}, {0, 1, 0}, 0};
     const plane<T> tilted{{1, 1, 1}, {1, 1, 1}, 0};
     const ray<T> below{{0, -3, 0}, {0, 1, 0}};
     const ray<T> behind{{0, 0, 0}, {1, 1, 1}};
     auto h1 = intersect_plane(ground, below, ahead<T>());
     auto h2 = intersect_plane(tilted, behind, ahead<T>());
-    bool ok = near_t(h1, 3) && near_t(h2, 1) && good_normal(*h1, ground, below) && good_normal(*h2, tilted, behind);
-    CHECK_MESSAGE(ok, "from behind the plane (d . n > 0) it is still a hit, and the normal is turned to face the ray");
+    bool ok = near_t(h1, 3) && near_t(h2, 1) && good_normal(*h1, ground) && good_normal(*h2, tilted);
+    CHECK_MESSAGE(ok, "from behind the plane (d . n > 0) it is still a hit, and the normal is still the plane's own "
+                      "(the one face rule, not the exercise, turns it towards the ray)");
 }
 
-TEST_CASE_TEMPLATE("hidden: the normal always faces the ray", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("hidden: the normal is the plane's own on either side", T, RT_SCALARS) {
     std::mt19937 rng(404);
     std::uniform_real_distribution<double> u(-1, 1);
-    int bad = 0, hits = 0;
+    int bad = 0, hits = 0, from_behind = 0;
     for (int i = 0; i < 500; ++i) {
         const plane<T> p{{T(u(rng)), T(u(rng)), T(u(rng))}, {T(u(rng)), T(u(rng)), T(u(rng))}, 0};
         const ray<T> r{{T(3 * u(rng)), T(3 * u(rng)), T(3 * u(rng))}, {T(u(rng)), T(u(rng)), T(u(rng))}};
@@ -159,10 +162,13 @@ TEST_CASE_TEMPLATE("hidden: the normal always faces the ray", T, RT_SCALARS) {
         auto hit = intersect_plane(p, r, interval<T>{-infinity<T>, infinity<T>});
         if (!hit) { ++bad; continue; }
         ++hits;
-        if (!good_normal(*hit, p, r)) ++bad;
+        if (dot(p.normal, r.direction) > T(0)) ++from_behind;
+        if (!good_normal(*hit, p)) ++bad;
     }
     CHECK(hits > 300);
-    CHECK_MESSAGE(bad == 0, "the hit's normal must be unit length and face the ray (normal . d < 0), on either side");
+    CHECK(from_behind > 100);
+    CHECK_MESSAGE(bad == 0, "the hit's normal must be unit length and point the way the plane's normal does, from "
+                            "either side");
 }
 
 TEST_CASE_TEMPLATE("hidden: the normal is unit length for any plane normal", T, RT_SCALARS) {
@@ -171,11 +177,11 @@ TEST_CASE_TEMPLATE("hidden: the normal is unit length for any plane normal", T, 
     for (T len : {T(0.001), T(0.5), T(3), T(250)}) {
         const plane<T> p{{0, 0, 0}, {0, len, 0}, 0};
         auto hit = intersect_plane(p, r, ahead<T>());
-        ok = ok && near_t(hit, 5) && good_normal(*hit, p, r);
+        ok = ok && near_t(hit, 5) && good_normal(*hit, p);
     }
     const plane<T> slanted{{0, 0, 0}, {3, 4, 0}, 0};
     auto hit = intersect_plane(slanted, r, ahead<T>());
-    ok = ok && near_t(hit, 5) && good_normal(*hit, slanted, r);
+    ok = ok && near_t(hit, 5) && good_normal(*hit, slanted);
     CHECK_MESSAGE(ok, "the plane's normal need not be unit length: t is unaffected, but the reported normal must be normalised");
 }
 
@@ -190,7 +196,7 @@ TEST_CASE_TEMPLATE("hidden: extreme normal lengths still give the right hit", T,
     for (T len : {tiny, subnormal, huge}) {
         const plane<T> p{{0, 0, 0}, {0, len, 0}, 0};
         auto hit = intersect_plane(p, r, ahead<T>());
-        ok = ok && near_t(hit, 2) && good_normal(*hit, p, r);
+        ok = ok && near_t(hit, 2) && good_normal(*hit, p);
     }
     CHECK_MESSAGE(ok, "a normal of extreme length still describes a plane: normalise it without overflow or underflow");
 }
@@ -298,7 +304,7 @@ TEST_CASE_TEMPLATE("hidden: random rays agree with a higher-precision answer", T
         if (got.has_value() != want_hit) { ++wrong_hit_or_miss; continue; }
         if (!got) continue;
         if (!(std::fabs((long double)got->t - t) <= margin)) ++wrong_t;
-        if (!good_normal(*got, p, r) || !point_on_ray(*got, r)) ++bad_record;
+        if (!good_normal(*got, p) || !point_on_ray(*got, r)) ++bad_record;
     }
     CHECK(checked > 4000);
     CHECK_MESSAGE(wrong_hit_or_miss == 0, "random rays: some hits were reported as misses or misses as hits");
@@ -317,8 +323,7 @@ TEST_CASE_TEMPLATE("hidden: exactly parallel rays whose rounded d.n is not 0 kee
     bool ok = dot(d, n) != T(0);  // the case is stiff
     // One unit off the plane: a crossing, if reported, is far beyond 1e6.
     auto off = intersect_plane(plane<T>{{0, 0, 1}, n, 0}, ray<T>{{0, 0, 0}, d}, ahead<T>());
-    ok = ok && (!off || (std::isfinite(off->t) && off->t > T(1e6) && good_normal(*off, plane<T>{{0, 0, 1}, n, 0},
-                                                                                  ray<T>{{0, 0, 0}, d})));
+    ok = ok && (!off || (std::isfinite(off->t) && off->t > T(1e6) && good_normal(*off, plane<T>{{0, 0, 1}, n, 0})));
     // A tmax of 1e6 (a scene's size) turns it into the miss it is.
     ok = ok && !intersect_plane(plane<T>{{0, 0, 1}, n, 0}, ray<T>{{0, 0, 0}, d}, interval<T>{0, T(1e6)});
     // In the plane (it passes through o + d): any reported t is in range and finite.
