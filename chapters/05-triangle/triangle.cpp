@@ -21,6 +21,7 @@ template <class T>
 std::optional<hit_record<T>> intersect_triangle(const triangle<T>& tri, const ray<T>& r, const interval<T>& range) {
     // Step 1: hit the triangle's plane (chapter 04's formula).
     // Step 2: keep the hit only if it is inside all three edge half-planes.
+    // Fill in t, point and the unit normal along (b - a) x (c - a).
     (void)tri;
     (void)r;
     (void)range;

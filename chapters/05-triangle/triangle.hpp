@@ -42,8 +42,10 @@ vec3<T> barycentric(const triangle<T>& tri, const vec3<T>& p);
 //   inside) at a t in (range.min, range.max), else std::nullopt:
 //     t       ray parameter
 //     point   r.at(t)
-//     normal  the unit normal of the triangle's plane, turned to face the
-//             ray's origin (dot(normal, r.direction) < 0)
+//     normal  the outward unit normal (b - a) x (c - a) / |(b - a) x (c - a)|:
+//             the side from which a -> b -> c runs counter-clockwise, from
+//             either side (a ray from behind gets the same normal, and
+//             hit.front_face(r) is false: common/hit_record.hpp's one rule)
 //     object  left at -1
 //   A degenerate triangle (zero area) and a ray parallel to the triangle's
 //   plane are misses, never NaN. "Zero" is as computed in T: when rounding

@@ -90,8 +90,9 @@ std::optional<hit_record<T>> intersect_triangle(const triangle<T>& tri, const ra
     hit_record<T> hit;
     hit.t = t;
     hit.point = point;
-    const vec3<T> unit = n / length(n);  // n is already scaled to about 1: no overflow
-    hit.normal = facing < T(0) ? unit : -unit;
+    // The outward normal, the side from which a -> b -> c runs counter-clockwise,
+    // whichever side the ray comes from (hit.front_face(r) tells which, common/hit_record.hpp).
+    hit.normal = n / length(n);  // n is already scaled to about 1: no overflow
     return hit;
 }
 

@@ -80,6 +80,13 @@ reference solve(const triangle<T>& tri, const ray<T>& r) {
     return ref;
 }
 
+// The hit's normal is the triangle's outward one, (b - a) x (c - a)
+// normalised, whatever side the ray came from.
+template <class T>
+bool outward(const hit_record<T>& hit, const reference& ref) {
+    return std::fabs(dot(convert<long double>(hit.normal), ref.normal) - 1) <= 10 * tolerance<T>();
+}
+
 template <class T>
 vec3<T> mix(const triangle<T>& tri, long double wa, long double wb, long double wc) {
     const vec3l p = wa * convert<long double>(tri.a) + wb * convert<long double>(tri.b) + wc * convert<long double>(tri.c);
@@ -391,9 +398,9 @@ TEST_CASE_TEMPLATE("hidden: rays lying in the triangle plane are misses", T, RT_
     CHECK_MESSAGE(ok, "a ray inside the triangle's plane gives t = 0 / 0: a miss, never a NaN hit");
 }
 
-TEST_CASE_TEMPLATE("hidden: the normal faces the ray", T, RT_SCALARS) {
+TEST_CASE_TEMPLATE("hidden: the normal follows the winding, from either side", T, RT_SCALARS) {
     random_scene<T> s(5010);
-    int wrong = 0, hits = 0;
+    int wrong = 0, hits = 0, from_behind = 0;
     for (int i = 0; i < 300; ++i) {
         const triangle<T> tri = s.fat_triangle();
         const ray<T> r = s.ray_through(mix(tri, 0.2L, 0.5L, 0.3L));
@@ -402,12 +409,13 @@ TEST_CASE_TEMPLATE("hidden: the normal faces the ray", T, RT_SCALARS) {
         auto hit = intersect_triangle(tri, r, everywhere<T>());
         if (!hit) { ++wrong; continue; }
         ++hits;
-        const bool faces = dot(hit->normal, r.direction) < T(0);
-        const bool along = std::fabs(std::fabs(dot(convert<long double>(hit->normal), ref.normal)) - 1) <= 10 * tolerance<T>();
-        if (!faces || !along) ++wrong;
+        if (dot(convert<long double>(r.direction), ref.normal) > 0) ++from_behind;
+        if (!outward(*hit, ref)) ++wrong;
     }
     CHECK(hits > 200);
-    CHECK_MESSAGE(wrong == 0, "the normal is along (b - a) x (c - a), turned so that normal . d < 0");
+    CHECK(from_behind > 50);
+    CHECK_MESSAGE(wrong == 0, "the normal is (b - a) x (c - a) normalised, whichever side the ray comes from (the "
+                              "one face rule, not the exercise, turns it towards the ray)");
 }
 
 TEST_CASE_TEMPLATE("hidden: the normal is unit length", T, RT_SCALARS) {
@@ -519,7 +527,7 @@ TEST_CASE_TEMPLATE("hidden: random rays agree with a higher-precision answer", T
         if (!near_t(hit, ref.t)) ++wrong_t;
         const vec3l at = convert<long double>(r.origin) + (long double)hit->t * convert<long double>(r.direction);
         const bool point_ok = length(convert<long double>(hit->point) - at) <= 10 * tolerance<T>() * (1 + length(at));
-        const bool normal_ok = is_unit(hit->normal) && dot(hit->normal, r.direction) < T(0);
+        const bool normal_ok = is_unit(hit->normal) && outward(*hit, ref);
         if (!point_ok || !normal_ok) ++bad_record;
     }
     CHECK(checked > 2000);

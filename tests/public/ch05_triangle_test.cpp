@@ -60,7 +60,7 @@ TEST_CASE_TEMPLATE("a ray through the inside of the triangle hits it", T, RT_SCA
     CHECK_MESSAGE((close(hit->point.x, T(0.5)) && close(hit->point.y, T(0.5)) && close(hit->point.z, T(0), T(1))),
                   "the hit point is r(t) = (0.5, 0.5, 0); got " << describe_hit(hit));
     CHECK_MESSAGE((close(length(hit->normal), T(1)) && close(hit->normal.z, T(1))),
-                  "the normal is (b - a) x (c - a) normalised, (0, 0, 1), which already faces this ray; got "
+                  "the normal is (b - a) x (c - a) normalised, (0, 0, 1); got "
                       << describe_hit(hit));
 }
 
@@ -166,16 +166,32 @@ TEST_CASE_TEMPLATE("a ray parallel to the triangle misses it", T, RT_SCALARS) {
                       << describe_hit(inside));
 }
 
-TEST_CASE_TEMPLATE("the triangle normal faces the ray", T, RT_SCALARS) {
-    // From below (z = -3 going up): the normal (0, 0, 1) points away from this ray.
-    auto hit = intersect_triangle(corner_triangle<T>(), ray<T>{{T(0.5), T(0.5), -3}, {0, 0, 1}}, everything_ahead<T>());
+TEST_CASE_TEMPLATE("the triangle normal follows its winding and a ray from behind sees the back face", T,
+                   RT_SCALARS) {
+    // From below (z = -3 going up): the normal (0, 0, 1) points away from this ray. The hit still
+    // reports (0, 0, 1); the one face rule (common/hit_record.hpp) says the ray sees the back face
+    // and gives the normal on the ray's side, (0, 0, -1), for shading.
+    const ray<T> r{{T(0.5), T(0.5), -3}, {0, 0, 1}};
+    auto hit = intersect_triangle(corner_triangle<T>(), r, everything_ahead<T>());
     REQUIRE_MESSAGE(hit.has_value(), "a triangle can be hit from either side; got a miss from below");
-    CHECK_MESSAGE(dot(hit->normal, vec3<T>{0, 0, 1}) < T(0),
-                  "seen from below the normal facing the ray is (0, 0, -1): flip n when d . n > 0; got "
+    CHECK_MESSAGE(close(hit->normal.z, T(1)),
+                  "the normal is (b - a) x (c - a) normalised, (0, 0, 1), from either side: do not turn it "
+                  "towards the ray (hit.facing_normal(r) does that, once, for every shape). Got "
                       << describe_hit(hit));
     CHECK_MESSAGE(close(length(hit->normal), T(1)),
                   "the normal must be unit length ((b - a) x (c - a) has length twice the area); got "
                       << describe_hit(hit));
+    CHECK_MESSAGE(!hit->front_face(r), "a ray from below sees the triangle's back face: front_face(r) is false");
+    CHECK_MESSAGE(close(hit->facing_normal(r).z, T(-1)),
+                  "seen from below, the normal on the ray's side is (0, 0, -1); got " << describe_hit(hit));
+    // The winding decides the outward side: the same corners listed the other way round.
+    const triangle<T> reversed{{0, 0, 0}, {0, 2, 0}, {2, 0, 0}, 0};
+    auto back = intersect_triangle(reversed, r, everything_ahead<T>());
+    REQUIRE_MESSAGE(back.has_value(), "the corners a, c, b make the same triangle: a hit; got a miss");
+    CHECK_MESSAGE(close(back->normal.z, T(-1)),
+                  "with the corners in the other order, (b - a) x (c - a) = (0, 0, -4): the normal is (0, 0, -1), "
+                  "and this ray from below sees a front face; got "
+                      << describe_hit(back));
 }
 
 TEST_CASE_TEMPLATE("triangle hits outside (tmin tmax) do not count", T, RT_SCALARS) {
