@@ -57,6 +57,7 @@ color shade(const vec3<T>& point, const vec3<T>& normal, const vec3<T>& to_viewe
             const std::vector<point_light>& lights, const color& ambient, const occlusion_test<T>& occluded) {
     // Ambient, then for each light that is above the surface and not blocked:
     // (diffuse * Lambert + specular * Blinn-Phong) * intensity / distance^2.
+    // The normal is already on the viewer's side: use it as given.
     (void)point;
     (void)normal;
     (void)to_viewer;

@@ -6,7 +6,11 @@
 //
 // Words used below:
 //   point     a hit point on a surface (from chapters 02, 04, 05)
-//   normal    the surface normal there; any length > 0 unless said otherwise
+//   normal    the surface normal there, on the side being lit; any length
+//             > 0 unless said otherwise. For a hit, the caller passes
+//             hit.facing_normal(r), the normal on the viewer's side
+//             (common/hit_record.hpp: one rule for every shape), so these
+//             functions never turn it round themselves
 //   to_light  a vector from the point towards a light (any length > 0)
 //   to_viewer a vector from the point back towards the eye (any length > 0),
 //             e.g. minus the primary ray's direction
@@ -112,9 +116,10 @@ using occlusion_test = std::function<bool(const ray<T>& r, const interval<T>& ra
 // square of the distance.
 //
 // Inputs
-//   point, normal  the hit point and its normal (any length > 0). The surface
-//                  is shaded on the side the viewer sees: if
-//                  dot(normal, to_viewer) < 0 the normal is flipped first.
+//   point, normal  the hit point and its normal (any length > 0), on the side
+//                  to light: the caller's hit.facing_normal(r), so the
+//                  viewer sees that side. Used as given, never flipped (the
+//                  face rule has already chosen the side, once).
 //   to_viewer      towards the eye, any length > 0
 //   m              the surface's material at this point: m.diffuse is the
 //                  diffuse colour there (a checker pattern already resolved,
@@ -130,7 +135,7 @@ using occlusion_test = std::function<bool(const ray<T>& r, const interval<T>& ra
 //     not blocked (occluded(shadow_ray(point, n, L.position)) is false):
 //         L.intensity / d^2 * ( m.diffuse  * lambert(n, l)
 //                             + m.specular * blinn_phong(n, l, to_viewer, m.shininess) )
-//   with l = L.position - point, d = |l| and n the (possibly flipped) normal.
+//   with l = L.position - point, d = |l| and n the normal as given.
 //   * A light below the surface contributes nothing and costs no shadow ray.
 //   * A light at distance 0 from the point contributes nothing (no infinity).
 //   * Never negative, never NaN. Not clamped to 1: the image writer does that.

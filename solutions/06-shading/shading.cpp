@@ -93,21 +93,18 @@ color shade(const vec3<T>& point, const vec3<T>& normal, const vec3<T>& to_viewe
     if (!usable_direction(to_viewer)) throw std::invalid_argument("shade: to_viewer must be non-zero and finite");
     if (!(m.shininess >= 0.0f)) throw std::invalid_argument("shade: the material's shininess must be >= 0");
 
-    // Shade the side of the surface the viewer sees.
-    const vec3<T> n = dot(normal, to_viewer) < T(0) ? -normal : normal;
-
     color result = ambient * m.diffuse;
     for (const point_light& light : lights) {
         const vec3<T> light_position = convert<T>(light.position);
         const vec3<T> to_light = light_position - point;
-        const T cos_term = lambert(n, to_light);
+        const T cos_term = lambert(normal, to_light);
         if (!(cos_term > T(0))) continue;  // below the surface (or at the point): no light, no shadow ray
-        const shadow_query<T> q = shadow_ray(point, n, light_position);
+        const shadow_query<T> q = shadow_ray(point, normal, light_position);
         if (occluded(q.r, q.range)) continue;
         // Inverse-square law: the light's power spreads over a sphere of area 4 pi d^2.
         const T d2 = dot(to_light, to_light);
         const float falloff = float(T(1) / d2);
-        const float highlight = float(blinn_phong(n, to_light, to_viewer, T(m.shininess)));
+        const float highlight = float(blinn_phong(normal, to_light, to_viewer, T(m.shininess)));
         result += light.intensity * falloff * (m.diffuse * float(cos_term) + m.specular * highlight);
     }
     return result;

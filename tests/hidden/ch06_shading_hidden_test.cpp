@@ -172,8 +172,8 @@ long count_acne(const test_scene<T>& s, int width, int height, long& lit) {
             auto hit = ch03::closest_hit(s.count(), ch03::object_intersector<T>(intersect), r,
                                          interval<T>{T(0), infinity<T>});
             if (!hit) continue;
-            // The normal turned towards the viewer, as shade() turns it.
-            const vec3<T> facing = dot(hit->normal, r.direction) < T(0) ? hit->normal : -hit->normal;
+            // The normal on the viewer's side, as a chapter program passes it to shade().
+            const vec3<T> facing = hit->facing_normal(r);
             for (const vec3<T>& light : s.lights) {
                 if (!(dot(light - hit->point, facing) > T(0))) continue;  // below the surface: no shadow ray
                 const ch06::shadow_query<T> q = ch06::shadow_ray(hit->point, facing, light);
@@ -449,14 +449,15 @@ TEST_CASE_TEMPLATE("hidden: shade never exceeds what the lights deliver", T, RT_
                       "never more than ambient plus (diffuse + specular) * intensity / d^2 for every light");
 }
 
-TEST_CASE_TEMPLATE("hidden: shade turns the normal towards the viewer", T, RT_SCALARS) {
-    // The normal points down, but viewer and light are both above the surface.
+TEST_CASE_TEMPLATE("hidden: shade uses the normal as given, never turned", T, RT_SCALARS) {
+    // The normal points down, the viewer and one light are above, another light is below: only the
+    // light below, on the normal's side, counts (the caller's face rule chose the side, once).
     const material m = glossy(color(0.5f), color(0), 8);
-    const color c = ch06::shade(vec3<T>(0), vec3<T>(0, -1, 0), vec3<T>(0, 1, 1), m, {{{0, 2, 0}, color(4)}}, color(0),
-                                nothing_blocks<T>());
-    CHECK_MESSAGE(colour_agrees(c, 0.5L, 0.5L, 0.5L),
-                  "the surface is shaded on the side the viewer sees: flip a normal that points away from the "
-                  "viewer before lighting");
+    const color c = ch06::shade(vec3<T>(0), vec3<T>(0, -1, 0), vec3<T>(0, 1, 1), m,
+                                {{{0, 2, 0}, color(4)}, {{0, -1, 0}, color(3)}}, color(0), nothing_blocks<T>());
+    CHECK_MESSAGE(colour_agrees(c, 1.5L, 1.5L, 1.5L),
+                  "shade lights the side the given normal is on and never turns it towards the viewer: the caller "
+                  "passes the hit's facing normal (common/hit_record.hpp)");
 }
 
 TEST_CASE_TEMPLATE("hidden: a light below the surface sends no shadow ray", T, RT_SCALARS) {

@@ -402,14 +402,27 @@ TEST_CASE_TEMPLATE("the shadow offset does not depend on the normal's length", T
                       << unit_step << ", " << long_step << " and " << short_step);
 }
 
-TEST_CASE_TEMPLATE("shade lights the side of the surface the viewer sees", T, RT_SCALARS) {
-    // The normal points down, but viewer and light are both above the surface.
-    const color c = ch06::shade(vec3<T>(0, 0, 0), vec3<T>(0, -1, 0), vec3<T>(0, 1, 1), matte(),
-                                {light_at({0, 1, 0}, 4)}, color(0), nothing_blocks<T>());
+TEST_CASE_TEMPLATE("shade lights the side the given normal is on", T, RT_SCALARS) {
+    // The ground y = 0 seen from below: the hit reports the plane's outward normal (0, 1, 0), and the
+    // one face rule (common/hit_record.hpp) gives the normal on the viewer's side, (0, -1, 0). A light
+    // below the ground lights the side the viewer sees.
+    const ray<T> up{{0, -1, -1}, {0, 1, 1}};
+    hit_record<T> hit;
+    hit.t = 1;
+    hit.point = vec3<T>(0, 0, 0);
+    hit.normal = vec3<T>(0, 1, 0);
+    const color c = ch06::shade(hit.point, hit.facing_normal(up), -up.direction, matte(), {light_at({0, -1, 0}, 4)},
+                                color(0), nothing_blocks<T>());
     CHECK_MESSAGE(close(c.r, 2.0f),
-                  "the given normal points away from the viewer (dot(normal, to_viewer) < 0): flip it first, the "
-                  "surface is shaded on the side the viewer sees. Lit from straight above: 0.5 * 4 / 1^2 = 2. Got "
-                      << describe_color(c)
-                      << (!shade_diagnosis<T>().empty() || c.r != 0.0f ? shade_diagnosis<T>()
-                                                                       : std::string(": the normal was not flipped")));
+                  "the normal (0, -1, 0) and the light are below the surface: lit from straight below, "
+                  "0.5 * 4 / 1^2 = 2. Got "
+                      << describe_color(c) << shade_diagnosis<T>());
+    // The caller chose the side; shade() does not choose it again.
+    const color far_side = ch06::shade(hit.point, hit.normal, -up.direction, matte(), {light_at({0, -1, 0}, 4)},
+                                       color(0), nothing_blocks<T>());
+    CHECK_MESSAGE(close(far_side.r, 0.0f),
+                  "given the normal (0, 1, 0), shade() lights the side above the ground, and the only light is "
+                  "below it: nothing but ambient (0). Use the normal as given; do not turn it towards the viewer "
+                  "(the caller passes hit.facing_normal(r), already turned, once). Got "
+                      << describe_color(far_side));
 }

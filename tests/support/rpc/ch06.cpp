@@ -1,6 +1,7 @@
 // Chapter 06's exercise functions for the judge and the runner (table_builds.hpp explains the two halves).
 // The occlusion test travels as a number: the judge keeps the shadow queries shade() may ask (the
-// student's own shadow_ray for every light, on both sides of the surface) with the test's answer to
+// student's own shadow_ray for every light, on both sides of the surface, so a shade() that turns the
+// normal round is caught by its colour rather than by an unexpected question) with the test's answer to
 // each, and answers every question the runner sends (served.hpp, served_by_judge.hpp).
 #include "served_by_judge.hpp"
 #include "table_builds.hpp"

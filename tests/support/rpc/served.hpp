@@ -287,8 +287,9 @@ struct served_objects {
 //
 // shade() asks occluded(q.r, q.range) with q = shadow_ray(point, n, light) for each light above the
 // surface (shading.hpp). The judge knows the point, the normal and the lights of the call, so it asks
-// the student's own shadow_ray for every light (on both sides of the surface: which side shade() takes
-// is the student's arithmetic) and keeps each query with the answer the test's occlusion test gives it.
+// the student's own shadow_ray for every light (on both sides of the surface: shade() uses the normal as
+// given, but one that turns it round should fail on its colour, with a message that says so, not on an
+// unexpected question) and keeps each query with the answer the test's occlusion test gives it.
 // It answers the runner's questions from that list; any other question, or one beyond the test's
 // budget, makes the judge throw std::logic_error out of shade() once the call is over (a bool answer
 // says nothing of which rule broke, and an exception thrown in the runner could be caught there).
