@@ -127,6 +127,14 @@ TEST_CASE_TEMPLATE("a ray starting inside the sphere hits the far root", T, RT_S
                   "the ray starts inside the sphere: the nearer root (t = -2) is behind it, so the hit in front "
                   "of the origin is the far root, t = 2. Got "
                       << describe_hit(hit) << diagnosis<T>());
+    CHECK_MESSAGE(close(hit->normal.y, T(1)),
+                  "from inside too the normal points out of the sphere, (P - C) / R = (0, 1, 0); got "
+                      << describe_hit(hit));
+    // Which side the ray is on is the one face rule's answer (common/hit_record.hpp), not the exercise's.
+    CHECK_MESSAGE(!hit->front_face(r), "a ray from inside meets the sphere's back face: front_face(r) is false");
+    CHECK_MESSAGE(close(hit->facing_normal(r).y, T(-1)),
+                  "seen from inside, the normal on the ray's side points to the centre, (0, -1, 0); got "
+                      << describe_hit(hit));
 }
 
 TEST_CASE_TEMPLATE("a non-unit direction scales t but not the hit point", T, RT_SCALARS) {
