@@ -100,7 +100,8 @@ image render_scene(const program_options& opt, long& rays) {
         const auto hit = closest(r, camera.primary_range());
         if (!hit) return world.background;
         const material m = material_at(world, *hit);
-        return ch06::shade(hit->point, hit->normal, -r.direction, m, world.lights, world.ambient, occluded);
+        // Shade the side the viewer sees: the one face rule (common/hit_record.hpp).
+        return ch06::shade(hit->point, hit->facing_normal(r), -r.direction, m, world.lights, world.ambient, occluded);
     });
     rays = long(opt.width) * opt.height + shadow_rays.load();
     if (heatmap_option) {

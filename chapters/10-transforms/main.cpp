@@ -208,7 +208,8 @@ image render_scene(const program_options& opt, long& rays) {
             in_model.object = int(std::llabs((long long)hit->object) % model_objects);
             m = material_at(w.shapes, in_model);
         }
-        return ch06::shade(hit->point, hit->normal, -r.direction, m, world.lights, world.ambient, occluded);
+        // Shade the side the viewer sees: the one face rule (common/hit_record.hpp).
+        return ch06::shade(hit->point, hit->facing_normal(r), -r.direction, m, world.lights, world.ambient, occluded);
     });
     rays = long(opt.width) * opt.height + shadow_rays.load();
     return img;
