@@ -106,7 +106,7 @@ private:
         }
         if (!hit) return world_.background;
         const material m = material_at(world_, *hit);
-        const vec3<T> n = dot(hit->normal, r.direction) > T(0) ? -hit->normal : hit->normal;  // the side we see
+        const vec3<T> n = hit->facing_normal(r);  // the side we see: the one face rule (common/hit_record.hpp)
         color c = world_.ambient * m.diffuse;
         for (const point_light& light : world_.lights) c += m.diffuse * irradiance(light, hit->point, n, light_u);
         return c;
