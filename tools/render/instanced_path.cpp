@@ -451,9 +451,9 @@ image render_instanced(const scene_description& description, const instanced_sce
             }
             const vec3d point = r.origin + h.t * r.direction;
             const material m = material_at(world.materials[size_t(h.material)], point);
-            out = world.lights.empty() ? unlit_colour(m, h.normal, r.direction)
-                                       : ch06::shade(point, h.normal, -r.direction, m, world.lights, world.ambient,
-                                                     occluded);
+            const vec3d n = facing_normal(h.normal, r.direction);  // the side the viewer sees (common/hit_record.hpp)
+            out = world.lights.empty() ? unlit_colour(m, n, r.direction)
+                                       : ch06::shade(point, n, -r.direction, m, world.lights, world.ambient, occluded);
         }
         shadow_rays += shadows;
     });
