@@ -32,28 +32,13 @@ template <class T>
 struct surface_hit {
     hit_record<T> hit;          // the shape's own answer (chapters 02, 04, 05), hit.object set
     surface_point<T> surface;   // hit.point put back on the surface, with its error bound
-    vec3<T> outward{};          // the surface's unit normal on its outside (see outward_normal)
+    vec3<T> outward{};          // the surface's unit normal on its outside (hit.normal)
     bool front_face = true;     // the ray arrived from the outside: dot(direction, outward) < 0
     material m;                 // the material at the hit (checker pattern resolved)
 
     // The normal on the side the ray came from: what reflect and refract take.
     vec3<T> facing_normal() const { return front_face ? outward : -outward; }
 };
-
-// The outward normal of the object hit: one rule for every shape (README,
-// "Which side is the ray on?"). A sphere's outside is away from its centre
-// (chapter 02's normal already is); a plane's is the side its stored normal
-// points to; a triangle's is the side its corners run counter-clockwise
-// seen from, (b - a) x (c - a). Chapters 04 and 05 turn their normals to face
-// the ray, which hides the side; so the stored shape is asked again here.
-template <class T>
-vec3<T> outward_normal(const scene<T>& world, const hit_record<T>& hit) {
-    const object_ref o = locate(world, hit.object);
-    if (o.kind == shape_kind::sphere) return hit.normal;
-    if (o.kind == shape_kind::plane) return normalize(world.planes[o.index].normal);
-    const triangle<T>& tr = world.triangles[o.index];
-    return normalize(cross(tr.b - tr.a, tr.c - tr.a));
-}
 
 // hit.point put back on the object's surface, with its error bound.
 template <class T>
@@ -76,8 +61,8 @@ std::optional<surface_hit<T>> closest_surface_hit(const scene<T>& world, const r
     surface_hit<T> h;
     h.hit = *hit;
     h.surface = surface_point_of(world, *hit);
-    h.outward = outward_normal(world, *hit);
-    h.front_face = dot(r.direction, h.outward) < T(0);
+    h.outward = hit->normal;  // every shape reports its outward normal (common/hit_record.hpp)
+    h.front_face = hit->front_face(r);
     h.m = material_at(world, *hit);
     return h;
 }

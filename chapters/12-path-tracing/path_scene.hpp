@@ -48,7 +48,7 @@ struct path_scene {
 // A ray's closest hit and the surface there.
 template <class T>
 struct surface_hit {
-    hit_record<T> hit;  // hit.normal is unit and faces the ray (turned towards its origin)
+    hit_record<T> hit;  // hit.normal is unit and faces the ray: the face rule's facing_normal
     surface material;
 };
 
@@ -62,7 +62,7 @@ std::optional<surface_hit<T>> closest_surface(const path_scene<T>& s, const ray<
     const std::optional<hit_record<T>> hit = ch03::closest_hit(s.geometry.object_count(), intersect, r, range);
     if (!hit) return std::nullopt;
     surface_hit<T> out{*hit, {}};
-    if (dot(out.hit.normal, r.direction) > T(0)) out.hit.normal = -out.hit.normal;
+    out.hit.normal = hit->facing_normal(r);  // the face rule (common/hit_record.hpp)
     const object_ref o = locate(s.geometry, hit->object);
     const int m = o.kind == shape_kind::sphere ? s.geometry.spheres[o.index].material : s.geometry.planes[o.index].material;
     out.material = s.surfaces.at(size_t(m));
