@@ -7,11 +7,12 @@
 set(fuzzer "${WORK_DIR}/scene_fuzzer")
 set(sources "${SOURCE_DIR}/tests/fuzz/scene_fuzz.cpp" "${SOURCE_DIR}/common/scene_file.cpp"
             "${SOURCE_DIR}/common/spd.cpp" "${SOURCE_DIR}/common/obj_mesh.cpp"
-            "${SOURCE_DIR}/common/instances.cpp")
+            "${SOURCE_DIR}/common/instances.cpp" "${SOURCE_DIR}/common/render.cpp")
 set(rebuild FALSE)
 foreach(f IN LISTS sources ITEMS "${SOURCE_DIR}/common/scene_file.hpp" "${SOURCE_DIR}/common/scene.hpp"
                                  "${SOURCE_DIR}/common/camera.hpp" "${SOURCE_DIR}/common/shapes.hpp"
-                                 "${SOURCE_DIR}/common/spd.hpp" "${SOURCE_DIR}/common/obj_mesh.hpp")
+                                 "${SOURCE_DIR}/common/spd.hpp" "${SOURCE_DIR}/common/obj_mesh.hpp"
+                                 "${SOURCE_DIR}/common/render.hpp")
   if(NOT EXISTS "${fuzzer}" OR "${f}" IS_NEWER_THAN "${fuzzer}")
     set(rebuild TRUE)
   endif()

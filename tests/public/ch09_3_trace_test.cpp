@@ -166,16 +166,19 @@ TEST_CASE_TEMPLATE("trace: a mirror adds what its reflected ray sees, tinted by 
     s.background = color(0.0f);
     const ray<T> r{{0, T(0.02), 0}, {0, 0, -1}};
     const color c = trace(s, r, rt::test::everything_ahead<T>(), 1, 1.0f);
-    // By hand: the mirror's own light, plus its tint times the matte ball's light.
-    const auto h = ch09::closest_surface_hit(s, r, rt::test::everything_ahead<T>());
-    REQUIRE(h.has_value());
-    const vec3<T> n = h->facing_normal();
+    // By hand: the mirror's own light plus its tint times what the reflected
+    // ray sees, each the local light that trace gives at depth 0. The mirror's
+    // hit is worked out here (t = 4 - sqrt(1 - 0.02^2)), not found with
+    // closest_surface_hit: its loop over the objects is chapter 03's exercise,
+    // which in a kit runs in the student's runner and cannot be called from here.
+    const T t = T(4) - std::sqrt(T(1) - T(0.02) * T(0.02));
+    const vec3<T> p = r.at(t);
+    const vec3<T> n = normalize(p - s.spheres[0].center);
     const vec3<T> mirrored = r.direction - T(2) * dot(r.direction, n) * n;
-    const ray<T> bounce = ch09::spawn_ray(h->surface, n, mirrored);
-    const auto seen = ch09::closest_surface_hit(s, bounce, rt::test::everything_ahead<T>());
-    REQUIRE_MESSAGE(seen.has_value(), "the reflected ray goes back past the eye to the matte ball");
-    REQUIRE(seen->hit.object == 1);
-    const color want = ch09::local_light(s, *h, r) + mirror_ball.mirror * ch09::local_light(s, *seen, bounce);
+    const ray<T> bounce = ch09::spawn_ray(ch09::on_sphere(s.spheres[0], p), n, mirrored);
+    // The reflected ray goes back past the eye to the matte ball.
+    const color want = trace(s, r, rt::test::everything_ahead<T>(), 0, 1.0f) +
+                       mirror_ball.mirror * trace(s, bounce, rt::test::everything_ahead<T>(), 0, 1.0f);
     CHECK_MESSAGE(colour_close(c, want), "local light + mirror colour x what the reflected ray sees: expected "
                                              << describe_color(want) << ", got " << describe_color(c));
 }
