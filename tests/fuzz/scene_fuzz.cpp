@@ -73,8 +73,11 @@ bool has_big_generate(const nlohmann::json& j) {
     if (!j.is_object()) return false;
     for (auto it = j.begin(); it != j.end(); ++it) {
         if (it.key() == "generate" && it->is_object()) {
-            const auto& size = (*it)["size"];
-            if (!size.is_number() || size.get<double>() > 3) return true;
+            // A missing size is refused by the reader ("size" is required), so
+            // only a size that is there can make the scene big. (operator[] of a
+            // const json asserts on a missing key: look it up with find.)
+            const auto size = it->find("size");
+            if (size != it->end() && (!size->is_number() || size->get<double>() > 3)) return true;
         }
         if (has_big_generate(*it)) return true;
     }
