@@ -16,6 +16,7 @@
 #include "picture.hpp"
 
 #include "common/chapter_scenes.hpp"
+#include "common/stub.hpp"
 #include "common/timing.hpp"
 
 #include <cmath>
@@ -69,9 +70,7 @@ double slope(const std::vector<row>& rows, const std::string& scene, const std::
     return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int study(int argc, char** argv) {
     int width = 96, height = 72;
     for (int i = 1; i + 1 < argc; i += 2) {
         if (!std::strcmp(argv[i], "--width")) width = std::atoi(argv[i + 1]);
@@ -115,4 +114,15 @@ int main(int argc, char** argv) {
                 std::fprintf(stderr, "slope of log(rms) against log(spp): %s, %s, %s: %.2f\n", scene,
                              ch11::sequence_name(kind), prec, slope(rows, scene, ch11::sequence_name(kind), prec));
     return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return study(argc, argv);
+    } catch (const rt::not_implemented& e) {  // the stubs: stop politely, as every chapter program does
+        std::fprintf(stderr, "ch11-sampling-study: %s\n", e.what());
+        return rt::exit_not_implemented;
+    }
 }
