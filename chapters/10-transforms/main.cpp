@@ -25,6 +25,7 @@
 #include "instancing.hpp"
 #include "sphereflake.hpp"
 
+#include "03-scene-loop/scene_loop.hpp"
 #include "08-acceleration/scene_tree.hpp"
 #include "02-sphere/sphere.hpp"
 #include "04-plane/plane.hpp"
@@ -171,14 +172,11 @@ image render_scene(const program_options& opt, long& rays) {
     const ch10::instance_tree<T>& top = w.composites[size_t(w.top - 1)];
     const auto planes = object_dispatch(world, ch02::intersect_sphere<T>, ch04::intersect_plane<T>);
     // The world's closest hit: the planes (scene objects 0 ..), then the instances.
+    // The planes go through chapter 03's loop (YOUR closest_hit), not a copy of it.
+    const ch03::object_intersector<T> plane_hit = planes.intersector();
     auto closest = [&](const ray<T>& r, interval<T> range, bool& on_plane) {
-        std::optional<hit_record<T>> best;
-        for (int p = 0; p < planes.count(); ++p)
-            if (auto h = planes.shape_hit(p, r, range)) {
-                best = h;
-                best->object = p;
-                range.max = h->t;
-            }
+        std::optional<hit_record<T>> best = ch03::closest_hit(planes.count(), plane_hit, r, range);
+        if (best) range.max = best->t;
         on_plane = bool(best);
         if (auto h = ch10::closest_hit(top, w.model_hit, r, range)) {
             best = h;
@@ -189,8 +187,7 @@ image render_scene(const program_options& opt, long& rays) {
     std::atomic<long> shadow_rays{0};
     const ch06::occlusion_test<T> occluded = [&](const ray<T>& r, const interval<T>& range) {
         shadow_rays.fetch_add(1, std::memory_order_relaxed);
-        for (int p = 0; p < planes.count(); ++p)
-            if (planes.shape_hit(p, r, range)) return true;
+        if (ch03::closest_hit(planes.count(), plane_hit, r, range)) return true;
         return ch10::any_hit(top, w.model_hit, r, range);
     };
     const long model_objects = w.shapes.object_count();
