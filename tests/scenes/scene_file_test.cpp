@@ -1,13 +1,19 @@
 // scene_file_test.cpp — the scene-file reader: good files load as written,
 // bad files are rejected with the file, line, column and field of the
 // mistake and a sentence saying what was expected.
+#include "common/math.hpp"
 #include "common/scene_file.hpp"
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 using namespace rt;
 
@@ -350,4 +356,60 @@ TEST_CASE("a camera that degenerates only in float is named with its field") {
     CHECK(e.field() == "camera.view_height");
     CHECK(e.line() == 1);
     CHECK(contains(e.problem(), "in float"));
+}
+
+namespace {
+
+// The signed volumes of the closed surfaces among a scene's triangles: the
+// triangles are joined into pieces by the edges they share (corners equal to
+// the bit), and a piece whose every edge has exactly two triangles is closed.
+// Its signed volume, the sum of a . (b x c) / 6 over its triangles, is
+// positive when every face runs counter-clockwise seen from outside, i.e.
+// when chapter 05's outward normal (b - a) x (c - a) points out of the solid.
+std::vector<double> closed_surface_volumes(const std::vector<triangle<double>>& triangles) {
+    using corner = std::array<double, 3>;
+    auto key = [](const vec3d& p) { return corner{p.x, p.y, p.z}; };
+    std::map<std::pair<corner, corner>, std::vector<size_t>> edges;  // unordered edge -> its triangles
+    for (size_t i = 0; i < triangles.size(); ++i) {
+        const corner v[3] = {key(triangles[i].a), key(triangles[i].b), key(triangles[i].c)};
+        for (int k = 0; k < 3; ++k) edges[std::minmax(v[k], v[(k + 1) % 3])].push_back(i);
+    }
+    std::vector<size_t> piece(triangles.size());
+    for (size_t i = 0; i < piece.size(); ++i) piece[i] = i;
+    auto root = [&](size_t i) {
+        while (piece[i] != i) i = piece[i] = piece[piece[i]];
+        return i;
+    };
+    for (const auto& [edge, sharing] : edges)
+        for (size_t s : sharing) piece[root(s)] = root(sharing[0]);
+    std::map<size_t, bool> closed;
+    for (const auto& [edge, sharing] : edges) {
+        auto [it, fresh] = closed.emplace(root(sharing[0]), true);
+        it->second = it->second && sharing.size() == 2;
+    }
+    std::map<size_t, double> volume;
+    for (size_t i = 0; i < triangles.size(); ++i) {
+        const triangle<double>& t = triangles[i];
+        volume[root(i)] += dot(t.a, cross(t.b, t.c)) / 6;
+    }
+    std::vector<double> volumes;
+    for (const auto& [p, is_closed] : closed)
+        if (is_closed) volumes.push_back(volume[p]);
+    return volumes;
+}
+
+}  // namespace
+
+// A mesh wound inward has every normal pointing into the solid: shading
+// looks right (the face rule turns the normal to the viewer), but chapter
+// 09's front-face flag calls every ray from outside a ray leaving the solid.
+TEST_CASE("the closed meshes of the course's scene files are wound outward") {
+    for (const char* file : {"triangles-and-mesh.json", "ch05-triangle-mesh.json", "ch06-shading.json",
+                             "obj-pyramid.json"}) {
+        CAPTURE(file);
+        const scene_description d = load_scene_file(std::string(RT_SCENES_DIR) + "/" + file);
+        const std::vector<double> volumes = closed_surface_volumes(d.world.triangles);
+        CHECK(volumes.size() == size_t(d.mesh_count));
+        for (double v : volumes) CHECK(v > 0);
+    }
 }

@@ -44,9 +44,14 @@ KIT_DENY = ["*/__pycache__/*", "*.pyc", "*/.DS_Store",
             "/tools/grader/results/*",              # where and when the instructor's figures were measured
             "/tests/support/rpc/README.md",                # the judge/runner layer's page for contributors
             "/chapters/07-precision/worked_values.cpp",    # evaluates the stable root pair: step 2's answer
-            "/chapters/09-reflection/spawn_study.cpp",     # computes refract's cos_t^2 four ways (README, "Measured")
-            "/chapters/10-transforms/rounding_study.cpp",  # its exact reference intersects spheres and triangles
-            "/chapters/11-sampling/same_on_every_thread_count.cpp"]  # an instructor-side test (solutions only)
+            # computes answers itself: the mirror direction (reflect's) and refract's cos_t^2 four ways
+            "/chapters/09-reflection/spawn_study.cpp",
+            # computes answers itself: its exact reference intersects spheres (the stable pair over
+            # the perpendicular foot: chapter 07's steps) and triangles (Cramer's rule) in long double
+            "/chapters/10-transforms/rounding_study.cpp",
+            # computes no answer (it only draws the chapter's picture with the student's functions and
+            # compares the bits), but it is an instructor-side test, built on the solutions side only
+            "/chapters/11-sampling/same_on_every_thread_count.cpp"]
 PRIVATE = ["solutions", "tests/hidden", "tests/fixtures"]
 
 # What may ship, by kind: every file of a written kit must match one of these
