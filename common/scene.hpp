@@ -19,9 +19,10 @@
 namespace rt {
 
 // How a surface responds to light: the parameters chapter 06 shades with,
-// and the two chapter 09 traces secondary rays for.
+// the two chapter 09 traces secondary rays for, and the light chapter 12's
+// surfaces give off.
 struct material {
-    color diffuse{0.8f, 0.8f, 0.8f};   // diffuse reflectance, per channel
+    color diffuse{0.8f, 0.8f, 0.8f};   // diffuse reflectance, per channel, in [0, 1]
     color specular{0.0f, 0.0f, 0.0f};  // highlight colour
     float shininess = 32.0f;           // highlight exponent: larger is a smaller, sharper highlight
     bool checker = false;              // planes: alternate diffuse and checker_color in unit squares
@@ -29,6 +30,8 @@ struct material {
     color mirror{0.0f, 0.0f, 0.0f};    // chapter 09: the fraction reflected in the mirror direction, per channel
     float ior = 0.0f;                  // chapter 09: > 0 makes the surface glass with this index of refraction
                                        // (light split between reflection and refraction by Fresnel's equations)
+    color emission{0.0f, 0.0f, 0.0f};  // chapter 12: the radiance the surface gives off, the same in every
+                                       // direction (a lamp you can see and hit); chapters before 12 ignore it
 };
 
 struct point_light {

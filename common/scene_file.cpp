@@ -420,6 +420,18 @@ private:
         return color(float(v.x), float(v.y), float(v.z));
     }
 
+    // A colour that is a fraction of the light arriving (a diffuse or checker
+    // colour, a mirror's share): more than all of it would make every bounce
+    // brighter than the last (chapters 09 and 12 follow light over many).
+    color read_reflectance(const json& j, const std::string& path) const {
+        const color c = read_color(j, path);
+        for (int k = 0; k < 3; ++k)
+            if (!(c[k] <= 1.0f))
+                fail(path + "[" + std::to_string(k) + "]",
+                     "expected a fraction from 0 to 1, got " + where_.token_at(path + "[" + std::to_string(k) + "]"));
+        return c;
+    }
+
     camera_description read_camera(const json& j, const std::string& path) const {
         check_keys(j, path, {"type", "eye", "look_at", "up", "fov", "view_height", "width", "height", "aperture",
                              "focus_distance"});
@@ -513,7 +525,7 @@ private:
         for (size_t i = 0; i < list->size(); ++i) {
             std::string p = "materials[" + std::to_string(i) + "]";
             const json& j = (*list)[i];
-            check_keys(j, p, {"name", "diffuse", "specular", "shininess", "checker", "mirror", "ior"});
+            check_keys(j, p, {"name", "diffuse", "specular", "shininess", "checker", "mirror", "ior", "emission"});
             material m;
             std::string name;
             if (auto* n = member(j, "name")) {
@@ -522,23 +534,16 @@ private:
                 if (std::find(d.material_names.begin(), d.material_names.end(), name) != d.material_names.end())
                     fail(p + ".name", "two materials are named \"" + name + "\"; names must be unique");
             }
-            if (auto* c = member(j, "diffuse")) m.diffuse = read_color(*c, p + ".diffuse");
+            if (auto* c = member(j, "diffuse")) m.diffuse = read_reflectance(*c, p + ".diffuse");
             if (auto* c = member(j, "specular")) m.specular = read_color(*c, p + ".specular");
             if (auto* s = member(j, "shininess"))
                 m.shininess = float(read_number_in(*s, p + ".shininess", 0, false, 10000, "a number from 0 to 10000"));
             if (auto* c = member(j, "checker")) {
                 m.checker = true;
-                m.checker_color = read_color(*c, p + ".checker");
+                m.checker_color = read_reflectance(*c, p + ".checker");
             }
-            if (auto* c = member(j, "mirror")) {
-                m.mirror = read_color(*c, p + ".mirror");
-                // A mirror reflects a fraction of the light: more than all of it
-                // would make every bounce brighter than the last.
-                for (int k = 0; k < 3; ++k)
-                    if (!(m.mirror[k] <= 1.0f))
-                        fail(p + ".mirror[" + std::to_string(k) + "]",
-                             "expected a fraction from 0 to 1, got " + where_.token_at(p + ".mirror[" + std::to_string(k) + "]"));
-            }
+            if (auto* c = member(j, "mirror")) m.mirror = read_reflectance(*c, p + ".mirror");
+            if (auto* c = member(j, "emission")) m.emission = read_color(*c, p + ".emission");
             // An index below 1 would be a medium slower than vacuum; above 10 no
             // transparent material exists (diamond is 2.42).
             if (auto* n = member(j, "ior"))

@@ -1,11 +1,16 @@
 // main.cpp — chapter 12's program: a Cornell box, path traced.
 //
 //   ch12-path-tracing [--spp N] [--seed S] [--estimator nee|bounce] [--sampling cosine|uniform]
-//                     [the usual options: --out, --width, --height, --precision, --compare, --view]
+//                     [--scene FILE] [the usual options: --out, --width, --height, --precision, --compare, --view]
+//
+// The scene is scenes/ch12-cornell-box.json (or --scene FILE), made into the
+// path tracer's world by path_scene_of (path_scene.hpp), which says what a
+// file may hold that a path tracer of matte surfaces leaves out; the program
+// names what it leaves out of the file it draws.
 //
 // Every pixel averages N paths (--spp, default 16), each through a point
 // drawn uniformly in the pixel (a box filter), each traced by *your*
-// path_radiance. The numbers come from the pixel's own stream
+// path_radiance (picture.hpp). The numbers come from the pixel's own stream
 // (pixel_random.hpp), seeded by --seed and the pixel's number: the picture is
 // the same on every run and every thread count. --estimator bounce turns
 // next-event estimation off (light only when a bounce hits the lamp),
@@ -13,18 +18,17 @@
 // estimators the lecture compares, all with the same expected picture.
 // With --compare the picture is judged by statistics (a noisy picture never
 // matches pixel for pixel): common/image_compare.hpp, compare_noisy_images.
-#include "cornell_box.hpp"
-#include "path_tracing.hpp"
-#include "pixel_random.hpp"
+#include "picture.hpp"
 
-#include "common/camera.hpp"
 #include "common/program.hpp"
-#include "common/render.hpp"
+#include "common/scene_file.hpp"
 
 #include <CLI/CLI.hpp>
 
-#include <atomic>
 #include <cstdint>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
 
 namespace {
 
@@ -36,36 +40,39 @@ struct chapter_options {
     std::string sampling = "cosine";
 } chosen;
 
-// Longest path: vertices beyond it are rare (roulette ends most paths after
-// a few bounces), and each costs its five numbers whether used or not.
-constexpr int max_vertices = 24;
+// Says on stderr what of the file the path tracer leaves out (path_scene_of).
+void say_what_is_left_out(const scene_description& d) {
+    int points = 0, highlights = 0, mirrors = 0, checkers = 0;
+    for (const point_light& l : d.world.lights) points += !(l.radius > 0);
+    for (const material& m : d.world.materials) {
+        highlights += m.specular.r > 0 || m.specular.g > 0 || m.specular.b > 0;
+        mirrors += m.mirror.r > 0 || m.mirror.g > 0 || m.mirror.b > 0;
+        checkers += m.checker;
+    }
+    std::string out;
+    const auto note = [&](int n, const char* what) {
+        if (n > 0) out += (out.empty() ? "" : ", ") + std::to_string(n) + " " + what;
+    };
+    note(points, points > 1 ? "point lights (no area: no path can hit one)" : "point light (no area: no path can hit it)");
+    note(highlights, highlights > 1 ? "materials' highlights" : "material's highlight");
+    note(mirrors, mirrors > 1 ? "materials' mirrors" : "material's mirror");
+    note(checkers, checkers > 1 ? "materials' checker patterns" : "material's checker pattern");
+    if (d.camera.aperture > 0) out += std::string(out.empty() ? "" : ", ") + "the camera's lens (a pinhole here)";
+    if (!out.empty()) std::fprintf(stderr, "ch12: the scene's %s are left out (matte surfaces only)\n", out.c_str());
+}
 
 template <class T>
 image render_box(const program_options& opt, long& rays) {
-    const ch12::path_scene<T> box = ch12::cornell_box<T>();
-    const ch12::cornell_view<double> view;
-    const vec3d eye = turned_eye(opt.view, view.eye, view.look_at, view.up);
-    const pinhole_camera<T> camera(camera_frame<T>::look_at(convert<T>(eye), convert<T>(view.look_at), convert<T>(view.up)),
-                                   T(view.vertical_fov_degrees), opt.width, opt.height);
-    ch12::path_settings settings;
-    settings.next_event = chosen.estimator == "nee";
-    settings.cosine_sampling = chosen.sampling == "cosine";
-    const interval<T> camera_range{T(1), infinity<T>};  // beyond the image plane (chapter 01)
-
-    image img = render(opt.width, opt.height, [&](int col, int row) {
-        ch12::pixel_random random(chosen.seed, std::uint64_t(row) * std::uint64_t(opt.width) + std::uint64_t(col));
-        color sum(0.0f);
-        for (int k = 0; k < opt.spp; ++k) {
-            // A point drawn in the pixel's square: x right, y up, as camera.hpp's pixel centre.
-            const T x = (T(col) + random.uniform<T>()) / T(opt.width) * T(2) - T(1);
-            const T y = T(1) - (T(row) + random.uniform<T>()) / T(opt.height) * T(2);
-            const vec3<T> on_plane = x * camera.half_height * camera.aspect() * camera.frame.u +
-                                     y * camera.half_height * camera.frame.v - camera.frame.w;
-            const ray<T> r{camera.frame.eye, on_plane};
-            sum += ch12::path_radiance(box, r, camera_range, random.path_numbers<T>(max_vertices), settings);
-        }
-        return sum / float(opt.spp);
-    });
+    // The camera is the file's, already turned by --view (common/program.hpp).
+    const pinhole_camera<T> camera = ch12::path_camera<T>(opt.scene, opt.width, opt.height);
+    say_what_is_left_out(opt.scene);
+    const ch12::path_scene<T> box = ch12::path_scene_of<T>(opt.scene);
+    ch12::picture_settings how;
+    how.paths = opt.spp;
+    how.seed = chosen.seed;
+    how.estimator.next_event = chosen.estimator == "nee";
+    how.estimator.cosine_sampling = chosen.sampling == "cosine";
+    image img = ch12::render_picture(box, camera, how);
     rays = long(opt.width) * opt.height * opt.spp;  // paths, not rays: the report's figure is paths/s
     return img;
 }
@@ -76,8 +83,8 @@ int main(int argc, char** argv) {
     rt::chapter_program program;
     program.id = "ch12";
     program.title = "path tracing";
-    program.default_width = 160;
-    program.default_height = 160;
+    program.draws_scene = true;
+    program.draws_triangles = false;  // the path tracer's world is spheres and planes
     program.default_spp = 16;  // --spp N (common/program.hpp)
     program.noisy_picture = true;
     program.render = rt::by_precision(render_box<float>, render_box<double>);

@@ -4,9 +4,10 @@
 // A path_scene is plain data: spheres and planes (chapters 02 and 04), each
 // with a surface saying how it reflects (a Lambertian albedo) and what it
 // emits (radiance), a list of the spheres that are lights (the ones next-event
-// estimation samples), and the radiance of the background. Its closest hit is
-// chapter 03's loop over chapters 02 and 04's tests; a secondary ray leaves a
-// surface from chapter 06's offset origin.
+// estimation samples), and the radiance of the background. It is read from a
+// scene file (path_scene_of, below: scenes/README.md's format). Its closest
+// hit is chapter 03's loop over chapters 02 and 04's tests; a secondary ray
+// leaves a surface from chapter 06's offset origin.
 //
 // Units: colours are linear RGB. Emission and background are radiance (what
 // a camera pixel shows when it sees them directly); an albedo in [0, 1] is
@@ -20,6 +21,7 @@
 
 #include "common/object_dispatch.hpp"
 #include "common/scene.hpp"
+#include "common/scene_file.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -44,6 +46,38 @@ struct path_scene {
     std::vector<int> lights;        // indices into geometry.spheres: the sphere lights NEE samples
     color background{0.0f};         // radiance of a ray that leaves the scene
 };
+
+// The path tracer's world as a scene file describes it (scenes/README.md).
+// Each material becomes a surface: its diffuse colour is the albedo (the
+// reader keeps it in [0, 1]), its emission the radiance it gives off. Every
+// sphere whose material emits is a light that next-event estimation samples;
+// an emitting plane still shines on what it sees, found only by bounces. A
+// sphere light of the file's "lights" (chapter 11: radius > 0, radiance
+// intensity / (pi radius^2)) becomes such a sphere too, after the file's own.
+// Left out, because a path tracer of matte surfaces has no use for them
+// (the chapter's program says which a file has): point lights (no area, so
+// no bounce can ever hit one), triangles, highlights, mirrors, checker
+// patterns and the ambient term (the bounces compute the light it stood for).
+template <class T>
+path_scene<T> path_scene_of(const scene_description& d) {
+    path_scene<T> s;
+    s.geometry = convert_scene<T>(d.world);
+    s.geometry.triangles.clear();
+    s.geometry.lights.clear();
+    for (const material& m : d.world.materials) s.surfaces.push_back({m.diffuse, m.emission});
+    for (const point_light& l : d.world.lights) {
+        if (!(T(l.radius) > T(0))) continue;  // a point: no area to hit or sample
+        const float area = float(3.14159265358979323846 * l.radius * l.radius);
+        s.surfaces.push_back({color(0.0f), l.intensity / area});
+        s.geometry.spheres.push_back({convert<T>(l.position), T(l.radius), int(s.surfaces.size()) - 1});
+    }
+    for (size_t i = 0; i < s.geometry.spheres.size(); ++i) {
+        const color& e = s.surfaces.at(size_t(s.geometry.spheres[i].material)).emission;
+        if (e.r > 0.0f || e.g > 0.0f || e.b > 0.0f) s.lights.push_back(int(i));
+    }
+    s.background = d.world.background;
+    return s;
+}
 
 // A ray's closest hit and the surface there.
 template <class T>
