@@ -88,6 +88,13 @@ void frame_around(const vec3d& w, vec3d& u, vec3d& v) {
     v = cross(w, u);
 }
 
+// The frame as a matrix: columns u, v, w.
+mat3d frame_matrix(const vec3d& w) {
+    vec3d u, v;
+    frame_around(w, u, v);
+    return mat3d(u, v, w);
+}
+
 // The nine directions of a sphere's children in its own frame (w: away
 // from its parent): six around the equator, 60 degrees apart, and three
 // above, between them, at the elevation asin(sqrt(2/3)) = 54.7 degrees.
@@ -107,16 +114,42 @@ std::vector<vec3d> child_directions() {
     return dirs;
 }
 
-// A sphere's k-th child: a third of its radius, touching it in direction
-// dirs[k] of the parent's frame (w = up: away from the grandparent).
+// The root's frame: the one frame_around gives the up direction z.
+const mat3d root_frame = frame_matrix(vec3d(0, 0, 1));
+
+// Child k of a sphere, relative to the sphere's own frame: its direction
+// and its turn, the child's frame in the parent's frame coordinates. The
+// turn is what frame_around gives the root's child, R^T F(R d) (R the
+// root's frame, F(w) frame_around's frame for w), and every sphere gives
+// its k-th child the same turn. That is what makes every sub-flake an exact
+// copy of the whole: a sphere with frame M has children with frames M C_k,
+// grandchildren with M C_k C_j, ..., so the sub-flake under it is the whole
+// flake turned by M R^T (and scaled, and moved). (Picking each child's frame
+// by frame_around from its direction in the world, as this generator did
+// before, gives every sphere the same directions but turns the rings of
+// grandchildren differently: a sphereflake, but not one made of copies.)
+struct child_step {
+    vec3d direction;  // in the parent's frame coordinates (a column of the turn: turn[2])
+    mat3d turn;
+};
+std::vector<child_step> child_steps() {
+    std::vector<child_step> steps;
+    for (const vec3d& d : child_directions()) steps.push_back({d, glm::transpose(root_frame) * frame_matrix(root_frame * d)});
+    return steps;
+}
+
+// A sphere of the flake and its frame (columns u, v, w; w away from its parent).
 struct flake_sphere {
-    vec3d center, up;
+    vec3d center;
+    mat3d frame;
     double radius;
 };
-flake_sphere child_of(const flake_sphere& parent, const vec3d& u, const vec3d& v, const vec3d& d) {
-    const vec3d dir = d.x * u + d.y * v + d.z * parent.up;
+// A sphere's child: a third of its radius, touching it in the direction
+// step.direction of the parent's frame, turned by step.turn.
+flake_sphere child_of(const flake_sphere& parent, const child_step& step) {
+    const vec3d dir = parent.frame * step.direction;
     const double child_radius = parent.radius / 3;
-    return {parent.center + (parent.radius + child_radius) * dir, dir, child_radius};
+    return {parent.center + (parent.radius + child_radius) * dir, parent.frame * step.turn, child_radius};
 }
 
 // Spheres in a flake `levels` deep: 1 + 9 + ... + 9^levels.
@@ -129,24 +162,22 @@ std::uint64_t flake_count(int levels) { return levels < 0 ? 0 : 1 + 9 * flake_co
 // recursion is only `size` deep (at most 9 calls on the stack); the work is
 // in the leaves.
 template <class Emit>
-void flake(const flake_sphere& s, int levels, std::uint64_t first, const std::vector<vec3d>& dirs, Emit& emit) {
+void flake(const flake_sphere& s, int levels, std::uint64_t first, const std::vector<child_step>& steps, Emit& emit) {
     emit(first, s);
     if (levels == 0) return;
-    vec3d u, v;
-    frame_around(s.up, u, v);
     const std::uint64_t below = flake_count(levels - 1);
-    for (size_t k = 0; k < dirs.size(); ++k)
-        flake(child_of(s, u, v, dirs[k]), levels - 1, first + 1 + k * below, dirs, emit);
+    for (size_t k = 0; k < steps.size(); ++k)
+        flake(child_of(s, steps[k]), levels - 1, first + 1 + k * below, steps, emit);
 }
 
 // A root sphere of radius 0.5 at the origin resting on the ground z = -0.5.
-const flake_sphere flake_root{vec3d(0, 0, 0), vec3d(0, 0, 1), 0.5};
+const flake_sphere flake_root{vec3d(0, 0, 0), root_frame, 0.5};
 const vec3d ground_point(0, 0, -0.5), ground_normal(0, 0, 1);
 
 void generate_balls(int size, spd_sink& out) {
     out.plane(ground_point, ground_normal, 0);
     auto emit = [&](std::uint64_t, const flake_sphere& s) { out.sphere(s.center, s.radius, 1); };
-    flake(flake_root, size, 0, child_directions(), emit);
+    flake(flake_root, size, 0, child_steps(), emit);
 }
 
 // The same spheres written straight into spheres[0 .. flake_count(size)),
@@ -155,7 +186,7 @@ void generate_balls(int size, spd_sink& out) {
 // from the same parent as in the serial walk, so the array is the same bit
 // for bit whatever the number of threads.
 void generate_balls_parallel(int size, sphere<double>* spheres, int material) {
-    const std::vector<vec3d> dirs = child_directions();
+    const std::vector<child_step> steps = child_steps();
     auto write = [&](std::uint64_t i, const flake_sphere& s) { spheres[i] = {s.center, s.radius, material}; };
     const int split = std::min(size, 2);  // levels generated here, above the tasks
     std::vector<std::pair<flake_sphere, std::uint64_t>> tasks;
@@ -165,14 +196,12 @@ void generate_balls_parallel(int size, sphere<double>* spheres, int material) {
             return;
         }
         write(first, s);
-        vec3d u, v;
-        frame_around(s.up, u, v);
         const std::uint64_t below = flake_count(size - depth - 1);
-        for (size_t k = 0; k < dirs.size(); ++k) self(self, child_of(s, u, v, dirs[k]), depth + 1, first + 1 + k * below);
+        for (size_t k = 0; k < steps.size(); ++k) self(self, child_of(s, steps[k]), depth + 1, first + 1 + k * below);
     };
     collect(collect, flake_root, 0, 0);
     for_each_row(int(tasks.size()), [&](int t) {
-        flake(tasks[size_t(t)].first, size - split, tasks[size_t(t)].second, dirs, write);
+        flake(tasks[size_t(t)].first, size - split, tasks[size_t(t)].second, steps, write);
     });
 }
 
@@ -307,32 +336,24 @@ instance_placement placement(int object, const affine_transform& to_parent, cons
     return {object, to_parent, inverted(to_parent), field};
 }
 
-// The columns u, v, w of the frame generate_balls gives a sphere whose
-// children point away along w.
-mat3d frame_matrix(const vec3d& w) {
-    vec3d u, v;
-    frame_around(w, u, v);
-    return mat3d(u, v, w);
-}
-
 // Level L of the flake: the root sphere (radius 0.5 at the origin, as
-// generate_balls makes it) and nine copies of level L - 1. Child i is the
-// whole turned so that its frame (the root's frame, up = z) becomes the
-// frame flake() gives a child pointing along direction i, scaled by 1/3 and
-// moved out to touch the root: centre at (0.5 + 0.5 / 3) * direction.
+// generate_balls makes it) and nine copies of level L - 1. Child k is the
+// whole turned so that the root's frame R becomes the k-th child's frame
+// R C_k (child_steps: R C_k R^T, turning about the origin), scaled by 1/3
+// and moved out to touch the root: centre at (0.5 + 0.5 / 3) R d_k. So
+// placed, the copy's spheres are generate_balls' spheres under that child,
+// to rounding (tests/scenes/instanced_render_test.cpp compares them).
 void instanced_balls(int size, object_definition& into, std::vector<object_definition>& objects,
                      const std::vector<int>& materials) {
-    const mat3d root = frame_matrix(vec3d(0, 0, 1));
     int below = -1;
     for (int level = 0; level <= size; ++level) {
         object_definition d;
         d.name = "generate (balls, level " + std::to_string(level) + ")";
         d.spheres.push_back({vec3d(0), 0.5, materials.at(1)});
         if (below >= 0)
-            for (const vec3d& local : child_directions()) {
-                const vec3d dir = root * local;
-                const affine_transform child{frame_matrix(dir) * glm::transpose(root) * (1.0 / 3.0),
-                                             (0.5 + 0.5 / 3.0) * dir};
+            for (const child_step& step : child_steps()) {
+                const affine_transform child{root_frame * step.turn * glm::transpose(root_frame) * (1.0 / 3.0),
+                                             (0.5 + 0.5 / 3.0) * (root_frame * step.direction)};
                 d.instances.push_back(placement(below, child, d.name));
             }
         objects.push_back(std::move(d));

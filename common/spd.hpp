@@ -86,13 +86,12 @@ spd_counts spd_generate(spd_database db, int size, scene<double>& into, const st
 // per level: a sphere and nine instances, or four instances), the level-10
 // sphereflake's 3,922,632,451 spheres take eleven spheres and 90 instances.
 //
-// The tetrahedron is the flat one's, to rounding. The flake is the flat
-// one's to rounding up to size 2; from size 3 on its sub-flakes are turned
-// about their own axes differently: the flat generator picks each sphere's
-// frame from its direction in the world, which is not the rotated frame of
-// its parent, so the flat flake's children are not exact copies of the
-// whole, and copies are what instances are. (Both are sphereflakes: nine
-// children touching each sphere at the same angles.)
+// Both are the flat ones', to rounding: the flat flake gives every
+// sphere's k-th child the same turn relative to its parent's frame, so each
+// of its sub-flakes is an exact copy of the whole, as instances are. The two
+// generators compose the same turns in another order, so a sphere's centre
+// and radius differ by rounding only; the bound, and the test that checks it
+// sphere by sphere and hit by hit: tests/scenes/instanced_render_test.cpp.
 int spd_max_instanced_size(spd_database db);  // balls 12, tetra 16, mount 0 (not self-similar)
 
 // Appends the levels' objects to `objects` and, to `into`, what the flat

@@ -9,11 +9,10 @@
 // spheres it shows: 1 + 9 + ... + 9^L (level 10: 3,922,632,451).
 //
 // The directions are chapter 08's (common/spd.cpp's child_directions, as
-// published by the SPD). Where the SPD turns each sphere's own frame by a
-// fixed rule (frame_around), a copy here turns its whole frame with it, so
-// from level 3 down the spheres lie a little differently about their
-// parents' axes than in chapter 08's flake: the same flake, up to how each
-// ring of children is turned. flatten() gives the flat list of this one,
+// published by the SPD), taken in the root's own axes; chapter 08's flake
+// (made of copies too, since common/spd.cpp gives every child the same turn
+// relative to its parent) starts from another frame at the root, so the two
+// flakes differ by how each ring of children is turned. flatten() gives the flat list of this one,
 // numbered as the instances number them, for the tests that compare both.
 //
 // Data only: no intersection here.
