@@ -22,6 +22,13 @@
 // model's space with YOUR transform_ray and brings the normal back with YOUR
 // transform_normal; the top-level boxes are YOUR instance_box. A model is a
 // chapter 08 tree (spheres, triangles) or a scene of instances itself.
+//
+// The models' spheres are met by YOUR chapter 07 intersect_sphere_robust, not
+// chapter 02's formula: a level-4 sphere of the flake is seen from about 440
+// radii away, where chapter 02's t is off by hundreds of epsilons; the hit
+// point then lies deeper below the surface than chapter 06's shadow offset
+// reaches, and its shadow ray finds its own sphere (shadow acne, README, "The
+// picture").
 #include "instancing.hpp"
 #include "sphereflake.hpp"
 
@@ -29,6 +36,7 @@
 #include "08-acceleration/scene_tree.hpp"
 #include "02-sphere/sphere.hpp"
 #include "04-plane/plane.hpp"
+#include "07-precision/robust_sphere.hpp"
 #include "05-triangle/triangle.hpp"
 #include "06-shading/shading.hpp"
 
@@ -73,9 +81,10 @@ struct instanced_world {
 
 template <class T>
 void set_up_model_hit(instanced_world<T>& w) {
-    using dispatch_t = decltype(object_dispatch(w.shapes, ch02::intersect_sphere<T>, ch04::intersect_plane<T>,
+    // Chapter 07's sphere test: t within a few ULPs however far the sphere (see the top of this file).
+    using dispatch_t = decltype(object_dispatch(w.shapes, ch07::intersect_sphere_robust<T>, ch04::intersect_plane<T>,
                                                 ch05::intersect_triangle<T>));
-    auto dispatch = std::make_shared<dispatch_t>(w.shapes, ch02::intersect_sphere<T>, ch04::intersect_plane<T>,
+    auto dispatch = std::make_shared<dispatch_t>(w.shapes, ch07::intersect_sphere_robust<T>, ch04::intersect_plane<T>,
                                                  ch05::intersect_triangle<T>);
     auto leaf = std::make_shared<ch08::leaf_intersector<T>>(ch08::leaf_test(*w.shape_tree, *dispatch));
     w.model_hit = [&w, dispatch, leaf](int m, const ray<T>& r, const interval<T>& range) -> std::optional<hit_record<T>> {
