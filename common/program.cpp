@@ -174,6 +174,15 @@ render_function by_precision(image (*as_float)(const program_options&, long&),
     };
 }
 
+void add_whole_number_option(CLI::App& app, const std::string& name, int& value, int lo, int hi,
+                             const std::string& help) {
+    app.add_option(name, value, help)->check(CLI::Range(lo, hi))->type_name("INT");
+}
+
+void add_flag_option(CLI::App& app, const std::string& name, bool& value, const std::string& help) {
+    app.add_flag(name, value, help);
+}
+
 int run_chapter_program(int argc, char** argv, const chapter_program& program) {
     program_options opt;
     opt.out = "out/" + program.id + ".png";

@@ -115,6 +115,19 @@ struct chapter_program {
     std::function<void(CLI::App&)> add_options;
 };
 
+// A chapter's own options (chapter 08's --level and --heatmap, 09's --depth,
+// 10's --level and --copies), for chapter_program::add_options: parsed and
+// checked with the shared ones and listed in --help beside them.
+//   "NAME N": a whole number from lo to hi, stored in value (left as it is
+//   when the option is not given); anything else is refused with a message.
+//   "NAME": a flag, value set to true when it is given.
+//   program.add_options = [](CLI::App& app) {
+//       rt::add_whole_number_option(app, "--depth", depth, 0, 50, "bounces followed after the first hit");
+//   };
+void add_whole_number_option(CLI::App& app, const std::string& name, int& value, int lo, int hi,
+                             const std::string& help);
+void add_flag_option(CLI::App& app, const std::string& name, bool& value, const std::string& help);
+
 // Parses argv, renders, writes the PNG and prints the report line.
 // Returns the process exit status: 0 on success, 1 on bad arguments or an
 // error, 2 when --compare finds the picture past tolerance, and

@@ -44,6 +44,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -74,6 +75,9 @@ scene<double> with_level(scene<double> world, int level) {
 
 template <class T>
 image render_scene(const program_options& opt, long& rays) {
+    if (level_option >= 0 && scene_option)
+        throw std::invalid_argument("--level draws the chapter's sphereflake; with --scene FILE, give the size in "
+                                    "the file's \"generate\" instead");
     const int level = level_option >= 0 ? level_option : (scene_option ? -1 : default_level);
     const scene<T> world = convert_scene<T>(level >= 0 ? with_level(opt.scene.world, level) : opt.scene.world);
     const scene_camera<T> camera(opt.scene.camera, opt.width, opt.height);
@@ -114,63 +118,22 @@ image render_scene(const program_options& opt, long& rays) {
     return img;
 }
 
-// Takes --heatmap out of the arguments (the shared front end does not know it).
-void take_heatmap_option(int& argc, char** argv) {
-    for (int i = 1; i < argc; ++i) {
-        if (std::strcmp(argv[i], "--heatmap") != 0) continue;
-        heatmap_option = true;
-        for (int k = i; k + 1 <= argc; ++k) argv[k] = argv[k + 1];  // argv[argc] is the null pointer
-        --argc;
-        --i;
-    }
-}
-
-// Takes --level N out of the arguments (the shared front end does not know it).
-// Returns false, with a message, for a bad value.
-bool take_level_option(int& argc, char** argv) {
-    for (int i = 1; i < argc; ++i) {
-        if (std::strcmp(argv[i], "--level") != 0) continue;
-        const int max = spd_max_size(spd_database::balls);
-        char* end = nullptr;
-        const long n = i + 1 < argc ? std::strtol(argv[i + 1], &end, 10) : -1;
-        if (i + 1 >= argc || end == argv[i + 1] || *end != '\0' || n < 1 || n > max) {
-            std::fprintf(stderr, "ch08: --level expects a whole number from 1 to %d (1 + 9 + ... + 9^N spheres)\n",
-                         max);
-            return false;
-        }
-        level_option = int(n);
-        for (int k = i; k + 2 <= argc; ++k) argv[k] = argv[k + 2];  // argv[argc] is the null pointer
-        argc -= 2;
-        --i;
-    }
-    return true;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (!take_level_option(argc, argv)) return 1;
-    take_heatmap_option(argc, argv);
     for (int i = 1; i < argc; ++i) scene_option = scene_option || std::strcmp(argv[i], "--scene") == 0;
-    for (int i = 1; i < argc; ++i)
-        if (level_option >= 0 && std::strcmp(argv[i], "--scene") == 0) {
-            std::fprintf(stderr, "ch08: --level draws the chapter's sphereflake; with --scene FILE, give the "
-                                 "size in the file's \"generate\" instead\n");
-            return 1;
-        }
     rt::chapter_program program;
     program.id = "ch08";
     program.title = "acceleration";
     program.draws_scene = true;
     program.render = rt::by_precision(render_scene<float>, render_scene<double>);
-    bool help = false;
-    for (int i = 1; i < argc; ++i) help = help || std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0;
-    const int status = rt::run_chapter_program(argc, argv, program);
-    // --level is this program's own option (take_level_option), so the shared help does not list it.
-    if (help)
-        std::printf("  --level INT                 draw the chapter's sphereflake at level N (1 + 9 + ... + 9^N "
-                    "spheres; default %d; not with --scene)\n"
-                    "  --heatmap                   also write OUT-heatmap.png: boxes opened and objects asked per pixel,\n"
-                    "                              by your tree and by brute force, on one colour scale\n", default_level);
-    return status;
+    program.add_options = [](CLI::App& app) {
+        rt::add_whole_number_option(app, "--level", level_option, 1, spd_max_size(spd_database::balls),
+                                    "draw the chapter's sphereflake at level N (1 + 9 + ... + 9^N spheres; default " +
+                                        std::to_string(default_level) + "; not with --scene)");
+        rt::add_flag_option(app, "--heatmap", heatmap_option,
+                            "also write OUT-heatmap.png: boxes opened and objects asked per pixel, by your tree and "
+                            "by brute force, on one colour scale");
+    };
+    return rt::run_chapter_program(argc, argv, program);
 }

@@ -54,6 +54,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -64,7 +65,7 @@ using namespace rt;
 constexpr int default_level = 4;  // the chapter's own picture
 constexpr int max_level = 10;     // 3.9 billion spheres: instancing stores 11 models
 int level_option = -1;            // --level N (the flake only)
-long copies_option = -1;          // --copies N (--scene only)
+int copies_option = -1;           // --copies N (--scene only)
 bool scene_option = false;
 
 // The models a scene of instances is made of, and how to ask each one.
@@ -146,6 +147,10 @@ std::vector<ch10::composite_model> grid_parts(long copies, const ch08::aabb<doub
 
 template <class T>
 image render_scene(const program_options& opt, long& rays) {
+    if (scene_option && level_option >= 0)
+        throw std::invalid_argument("--level draws the chapter's sphereflake; with --scene FILE, use --copies N");
+    if (!scene_option && copies_option >= 0)
+        throw std::invalid_argument("--copies places a --scene FILE's objects N times (the flake has --level)");
     const scene<double>& file = opt.scene.world;
     const scene_camera<T> camera(opt.scene.camera, opt.width, opt.height);
     scene<T> world = convert_scene<T>(file);  // lights, materials, planes; the shapes go into the model
@@ -221,52 +226,21 @@ image render_scene(const program_options& opt, long& rays) {
     return img;
 }
 
-// Takes "--NAME N" out of the arguments (the shared front end does not know it).
-bool take_number_option(int& argc, char** argv, const char* name, long lo, long hi, long& value) {
-    for (int i = 1; i < argc; ++i) {
-        if (std::strcmp(argv[i], name) != 0) continue;
-        char* end = nullptr;
-        const long n = i + 1 < argc ? std::strtol(argv[i + 1], &end, 10) : -1;
-        if (i + 1 >= argc || end == argv[i + 1] || *end != '\0' || n < lo || n > hi) {
-            std::fprintf(stderr, "ch10: %s expects a whole number from %ld to %ld\n", name, lo, hi);
-            return false;
-        }
-        value = n;
-        for (int k = i; k + 2 <= argc; ++k) argv[k] = argv[k + 2];  // argv[argc] is the null pointer
-        argc -= 2;
-        --i;
-    }
-    return true;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-    long level = -1;
-    if (!take_number_option(argc, argv, "--level", 1, max_level, level)) return 1;
-    if (!take_number_option(argc, argv, "--copies", 1, 1'000'000, copies_option)) return 1;
-    level_option = int(level);
     for (int i = 1; i < argc; ++i) scene_option = scene_option || std::strcmp(argv[i], "--scene") == 0;
-    if (scene_option && level_option >= 0) {
-        std::fprintf(stderr, "ch10: --level draws the chapter's sphereflake; with --scene FILE, use --copies N\n");
-        return 1;
-    }
-    if (!scene_option && copies_option >= 0) {
-        std::fprintf(stderr, "ch10: --copies places a --scene FILE's objects N times (the flake has --level)\n");
-        return 1;
-    }
     rt::chapter_program program;
     program.id = "ch10";
     program.title = "transforms";
     program.draws_scene = true;
     program.render = rt::by_precision(render_scene<float>, render_scene<double>);
-    bool help = false;
-    for (int i = 1; i < argc; ++i) help = help || std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0;
-    const int status = rt::run_chapter_program(argc, argv, program);
-    if (help)
-        std::printf("  --level INT                 the sphereflake at level N, as instances of instances (1 to %d; "
-                    "default %d; not with --scene)\n"
-                    "  --copies INT                with --scene FILE: place the file's objects N times\n",
-                    max_level, default_level);
-    return status;
+    program.add_options = [](CLI::App& app) {
+        rt::add_whole_number_option(app, "--level", level_option, 1, max_level,
+                                    "the sphereflake at level N, as instances of instances (default " +
+                                        std::to_string(default_level) + "; not with --scene)");
+        rt::add_whole_number_option(app, "--copies", copies_option, 1, 1'000'000,
+                                    "with --scene FILE: place the file's objects N times");
+    };
+    return rt::run_chapter_program(argc, argv, program);
 }
