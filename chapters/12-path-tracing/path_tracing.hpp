@@ -80,7 +80,7 @@ struct bounce_numbers {
 
 // Which estimator path_radiance evaluates (the lecture compares all four).
 struct path_settings {
-    bool next_event = true;       // sample the lights at every diffuse vertex
+    bool next_event = true;       // sample the lights at every matte vertex
     bool cosine_sampling = true;  // bounce by cosine_hemisphere (else uniform_hemisphere)
     int roulette_after = 3;       // bounces before roulette starts (a huge number: never)
 };
@@ -94,21 +94,26 @@ struct path_settings {
 //      the path. range is camera_range for the camera ray, (0, infinity) after.
 //   2. The hit surface's emission is added, beta * emission, unless next-event
 //      estimation already counted it: with settings.next_event, a light of
-//      s.lights that a bounce (k > 0) reaches adds nothing (its light arrived
-//      through the light sample at the vertex before). The camera ray's hit
-//      always counts.
-//   3. A black surface (albedo 0 in every channel) ends the path.
-//   4. With settings.next_event: for every light i of s.lights, the sample
+//      s.lights reached by the bounce from a matte vertex adds nothing (its
+//      light arrived through that vertex's light sample, step 5). The camera
+//      ray's hit always counts, and so does a light reached by the ray that
+//      leaves glass (step 3): no light sample saw the light along it.
+//   3. Glass (hit.material.ior > 0) is a specular vertex: no light sample (a
+//      sample's direction is never the one glass sends light along) and no
+//      roulette; the next ray is glass_bounce(s, hit, r, bounce_u1)
+//      (path_scene.hpp), beta unchanged, and the path goes on at step 1.
+//   4. A black matte surface (albedo 0 in every channel) ends the path.
+//   5. With settings.next_event: for every light i of s.lights, the sample
 //      sample_light(s, i, p, light_u1, light_u2) from the point p moved off the
 //      surface, p = ch06::shadow_ray_origin(hit point, normal, normal), adds
 //      beta * light_contribution(albedo, normal, sample) when it has pdf > 0 and
 //      light_visible(s, p, sample).
-//   5. The next direction: cosine_hemisphere(normal, bounce_u1, bounce_u2) or,
+//   6. The next direction: cosine_hemisphere(normal, bounce_u1, bounce_u2) or,
 //      without settings.cosine_sampling, uniform_hemisphere(...) with its pdf;
 //      beta *= albedo / pi * cos(theta) / pdf.
-//   6. From vertex k >= settings.roulette_after on, beta *= roulette_weight(beta,
+//   7. From vertex k >= settings.roulette_after on, beta *= roulette_weight(beta,
 //      roulette_u); a weight of 0 ends the path.
-//   7. The next ray leaves from p in the new direction.
+//   8. The next ray leaves from p in the new direction.
 // Returns L. Never negative, never inf or NaN (a NaN throughput ends the path).
 // Throws std::invalid_argument when a surface's albedo is above 1 or below 0,
 // or an emission is negative or not finite (the loop would make energy).

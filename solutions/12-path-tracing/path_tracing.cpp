@@ -73,6 +73,7 @@ color path_radiance(const path_scene<T>& s, const ray<T>& camera_ray, const inte
     color beta(1.0f);
     ray<T> r = camera_ray;
     interval<T> range = camera_range;
+    bool light_sampled = false;  // did the vertex before this one sample the lights?
     for (size_t k = 0; k < numbers.size(); ++k) {
         const bounce_numbers<T>& u = numbers[k];
         const std::optional<surface_hit<T>> hit = closest_surface(s, r, range);
@@ -82,8 +83,14 @@ color path_radiance(const path_scene<T>& s, const ray<T>& camera_ray, const inte
         }
         const surface& m = hit->material;
         // A light reached by a bounce was already counted by the light sample at the vertex before.
-        const bool counted_by_light_sample = settings.next_event && k > 0 && is_light(s, hit->hit.object);
+        const bool counted_by_light_sample = light_sampled && is_light(s, hit->hit.object);
         if (!counted_by_light_sample) radiance += beta * m.emission;
+        range = interval<T>{T(0), infinity<T>};
+        if (m.ior > 0.0f) {  // glass: a specular vertex, no light sample; the light it leads to counts
+            r = glass_bounce(s, *hit, r, u.bounce_u1);
+            light_sampled = false;
+            continue;
+        }
         if (is_black(m.albedo)) break;
 
         const vec3<T>& n = hit->hit.normal;
@@ -94,6 +101,7 @@ color path_radiance(const path_scene<T>& s, const ray<T>& camera_ray, const inte
                 if (l.pdf > T(0) && light_visible(s, p, l)) radiance += beta * light_contribution(m.albedo, n, l);
             }
         }
+        light_sampled = settings.next_event;
 
         direction_sample<T> next;
         if (settings.cosine_sampling) {
@@ -113,7 +121,6 @@ color path_radiance(const path_scene<T>& s, const ray<T>& camera_ray, const inte
         }
         if (is_black(beta)) break;
         r = ray<T>{p, next.direction};
-        range = interval<T>{T(0), infinity<T>};
     }
     return radiance;
 }

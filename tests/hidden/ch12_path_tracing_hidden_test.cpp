@@ -159,6 +159,37 @@ TEST_CASE_TEMPLATE("hidden: next-event estimation counts each light once", T, RT
     }
 }
 
+TEST_CASE_TEMPLATE("hidden: a glass ball in a white furnace vanishes", T, RT_SCALARS) {
+    const path_scene<T> furnace = glass_furnace<T>(2.0f, false);
+    const ray<T> r{vec3<T>(T(0.4), T(-0.5), T(5)), vec3<T>(T(0.9), T(0.45), T(-5))};  // onto the glass ball
+    for (bool cosine : {true, false})
+        for (int roulette : {0, 2}) {
+            path_settings how;
+            how.next_event = false;
+            how.cosine_sampling = cosine;
+            how.roulette_after = roulette;
+            const estimate e = path_estimate(furnace, r, how, 1000, 48, 13);
+            CHECK_MESSAGE(e.finite, "paths through glass are finite");
+            CHECK_MESSAGE(std::fabs(e.mean - 2.0) <= 5 * e.standard_error + 2e-4,
+                          "glass absorbs nothing: a glass vertex passes the throughput on unchanged");
+        }
+}
+
+TEST_CASE_TEMPLATE("hidden: a light reached through glass is counted once", T, RT_SCALARS) {
+    const path_scene<T> furnace = glass_furnace<T>(2.0f, true);
+    const std::vector<ray<T>> rays = {{vec3<T>(T(2.5), T(-3.3), T(-0.4)), vec3<T>(T(-1.35), T(3.4), T(0.45))},  // through the glass to the light
+                                      {vec3<T>(T(1.6), T(2.4), T(5)), vec3<T>(T(-0.3), T(-1.9), T(-5))},  // glass, from above
+                                      {vec3<T>(T(-0.2), T(0.1), T(6)), vec3<T>(T(-0.15), T(0.05), T(-5.6))}};  // the matte one
+    for (const ray<T>& r : rays)
+        for (bool cosine : {true, false}) {
+            path_settings how;
+            how.cosine_sampling = cosine;
+            const estimate e = path_estimate(furnace, r, how, 1200, 48, 17);
+            CHECK_MESSAGE(std::fabs(e.mean - 2.0) <= 5 * e.standard_error + 2e-4,
+                          "after a glass vertex the light a path reaches counts: no light sample saw it");
+        }
+}
+
 TEST_CASE_TEMPLATE("hidden: energy never grows along a path", T, RT_SCALARS) {
     const path_scene<T> furnace = white_furnace<T>(1.0f, false);
     const ray<T> r{vec3<T>(T(0.1), T(0.2), T(5)), vec3<T>(T(-1), T(0.1), T(-5))};
@@ -175,10 +206,11 @@ TEST_CASE_TEMPLATE("hidden: energy never grows along a path", T, RT_SCALARS) {
 TEST_CASE_TEMPLATE("hidden: next-event estimation and bouncing agree, shadows included", T, RT_SCALARS) {
     const path_scene<T> box = cornell_box<T>();
     // Towards the floor beside the right sphere, towards the back wall, and onto the floor in the
-    // left sphere's shadow (the light hidden behind the sphere).
+    // right (white) sphere's shadow (the light hidden behind the sphere; the glass ball's shadow
+    // is lit by the light it focuses, so it would not show a missing shadow ray).
     const std::vector<ray<T>> rays = {{vec3<T>(T(0), T(1), T(3.3)), vec3<T>(T(0.28), T(-0.55), T(-1))},
                                       {vec3<T>(T(0), T(1), T(3.3)), vec3<T>(T(-0.1), T(0.05), T(-1))},
-                                      {vec3<T>(T(0), T(1), T(3.3)), vec3<T>(T(-0.45), T(-1), T(-3.35))}};
+                                      {vec3<T>(T(0), T(1), T(3.3)), vec3<T>(T(0.6), T(-1), T(-2.98))}};
     for (const ray<T>& r : rays) {
         path_settings nee, bounce;
         bounce.next_event = false;

@@ -107,11 +107,37 @@ path_scene<T> white_furnace(float radiance, bool with_light) {
     return s;
 }
 
+// The white furnace with the right sphere made of glass (index 1.5): glass
+// absorbs nothing (it reflects the share F and lets the rest through), so it
+// vanishes as well, and with_light, the light it lets through to a path must
+// be counted (no light sample sees the light through glass).
+template <class T>
+path_scene<T> glass_furnace(float radiance, bool with_light) {
+    path_scene<T> s = white_furnace<T>(radiance, with_light);
+    s.surfaces.push_back({color(0.0f), color(0.0f), 1.5f});
+    s.geometry.spheres[2].material = int(s.surfaces.size()) - 1;
+    return s;
+}
+
 // A ray from inside the furnace at the right sphere's side that faces the
 // left one (much of what it reflects comes from the other sphere).
 template <class T>
 ray<T> furnace_view() {
     return {vec3<T>(T(0), T(0.5), T(6)), vec3<T>(T(0.45), T(-0.2), T(-6))};
+}
+
+// A ray onto the left sphere's side that faces the right one.
+template <class T>
+ray<T> furnace_view_of_left() {
+    return {vec3<T>(T(0), T(0.3), T(6)), vec3<T>(T(-0.4), T(-0.1), T(-5.5))};
+}
+
+// A ray from below onto the right sphere, nearly through its centre and on
+// towards the light: through a glass ball, most of its paths reach the light
+// straight after leaving the glass.
+template <class T>
+ray<T> furnace_view_through_right() {
+    return {vec3<T>(T(2.6), T(-3.5), T(0.3)), vec3<T>(T(-1.3), T(3.5), T(-0.3))};
 }
 
 // A ray onto the top of the right sphere, which sees much of the furnace's light.

@@ -159,6 +159,32 @@ TEST_CASE_TEMPLATE("white furnace with a light: next-event estimation counts the
     CHECK(std::fabs(e.mean - 1.0) <= 5 * e.standard_error + 1e-4);
 }
 
+TEST_CASE_TEMPLATE("white furnace: a glass ball vanishes too, for it absorbs nothing", T, RT_SCALARS) {
+    const path_scene<T> furnace = glass_furnace<T>(1.0f, false);
+    for (const ray<T>& r : {furnace_view<T>(), furnace_view_of_left<T>()}) {
+        path_settings how;
+        how.next_event = false;
+        const estimate e = path_estimate(furnace, r, how, 1500);
+        INFO(describe_estimate(e) << "; glass reflects the share F and lets 1 - F through, so its throughput goes on "
+             "unchanged (glass_bounce): a glass vertex must not end the path nor weigh it by an albedo");
+        CHECK(e.finite);
+        CHECK(std::fabs(e.mean - 1.0) <= 5 * e.standard_error + 1e-4);
+    }
+}
+
+TEST_CASE_TEMPLATE("next-event estimation counts the light a path reaches through glass", T, RT_SCALARS) {
+    const path_scene<T> furnace = glass_furnace<T>(1.0f, true);
+    path_settings how;
+    how.next_event = true;
+    for (const ray<T>& r : {furnace_view_through_right<T>(), furnace_view_from_above<T>(), furnace_view_of_left<T>()}) {
+        const estimate e = path_estimate(furnace, r, how, 1500);
+        INFO(describe_estimate(e) << "; the answer stays 1. Less means a light reached through glass was dropped: the "
+             "light sample of a matte vertex stops at the glass (a shadow), so only the path through the glass brings "
+             "that light, and after a glass vertex the light's emission counts");
+        CHECK(std::fabs(e.mean - 1.0) <= 5 * e.standard_error + 1e-4);
+    }
+}
+
 TEST_CASE_TEMPLATE("energy never grows along a path", T, RT_SCALARS) {
     // Without roulette and light samples, a furnace path's value is a sum of
     // emission (1/2) times throughputs that shrink by the wall's albedo (1/2)

@@ -7,7 +7,7 @@
 // How chapter 12's own types travel (exact_bits.hpp: a struct lists its members once). Found by
 // argument-dependent lookup, so they live in the types' namespace.
 namespace rt::ch12 {
-template <class F> void fields(surface& x, F&& f) { f(x.albedo, x.emission); }
+template <class F> void fields(surface& x, F&& f) { f(x.albedo, x.emission, x.ior); }
 template <class T, class F> void fields(path_scene<T>& x, F&& f) {
     f(x.geometry.spheres, x.geometry.planes, x.surfaces, x.lights, x.background);
 }
