@@ -70,7 +70,9 @@ KIT_SHIP = {
     # A measurement that runs the student's own shadow_ray_origin (chapter 06's README, "Shadow acne").
     "programs": ["chapters/06-shading/acne_study.cpp",
                  # Chapter 11's error study: it draws with the student's own sampling code.
-                 "chapters/11-sampling/sampling_study.cpp"],
+                 "chapters/11-sampling/sampling_study.cpp",
+                 # Chapter 12's error study: it draws with the student's own path_radiance.
+                 "chapters/12-path-tracing/path_study.cpp"],
     "pictures": [CHAPTER + "**.png", CHAPTER + "**.svg", "tests/common/data/*.png"],
     # Numbers, not code: the reference solution's t for every ray of chapter
     # 07's picture, written by ch07-reference-hits and kept equal to the
