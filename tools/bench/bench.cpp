@@ -1,7 +1,7 @@
 // rt-bench — throughput of the specialised renderer against the general one
 // and, when Intel Embree is installed, against Embree.
 //
-//   rt-bench [--quick] [--runs R] [--size S]
+//   rt-bench [--quick] [--runs R] [--size S] [--wall] [--no-flake] [--flake-only]
 //
 // prints, at S x S pixels (default 512) with one primary ray per pixel on
 // every core:
@@ -18,8 +18,10 @@
 // never asserted: this is not a test.
 #include "fast_path.hpp"
 #include "general_path.hpp"
+#include "instanced_path.hpp"
 #include "scene_plan.hpp"
 
+#include "common/image_compare.hpp"
 #include "common/render.hpp"
 #include "common/scene_file.hpp"
 #include "common/spd.hpp"
@@ -35,6 +37,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <random>
 #include <thread>
@@ -477,57 +480,269 @@ scene_description generated_scene(spd_database db, int level, const vec3d& eye, 
     return d;
 }
 
-void big_scenes(int size, bool flake) {
+#ifdef RT_HAVE_EMBREE
+// A scene with instances in Embree 3, which (as Debian builds it) follows
+// one level of instances: RTC_MAX_INSTANCE_LEVEL_COUNT is 1. So the
+// instances of instances are cut at depth `split`: the spheres of the
+// objects above it go into the top-level scene as world-space point
+// spheres, and each placement at depth `split` becomes one Embree instance
+// (a float 3x4 transform, composed in double) of a shared scene holding
+// that object flattened in its own space. For the sphereflake of level L
+// cut at depth s: 1 + 9 + ... + 9^(s-1) top spheres and 9^s instances of
+// one level-(L - s) flake. Spheres only (Embree has no infinite plane);
+// spheres must be placed by similarities (the flake's are).
+class embree_instanced_scene {
+public:
+    embree_instanced_scene(const scene_description& d, int split) {
+        device_ = rtcNewDevice("threads=2");
+        top_ = rtcNewScene(device_);
+        rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_HIGH);
+        const stopwatch sw;
+        for (const instance_placement& i : d.instances) place(d, i.object, i.to_parent, 0, split);
+        top_spheres = spheres_.size() / 4;  // x, y, z, r each
+        if (!spheres_.empty()) {
+            RTCGeometry g = point_spheres(spheres_);
+            rtcAttachGeometry(top_, g);
+            rtcReleaseGeometry(g);
+        }
+        rtcCommitScene(top_);
+        build_seconds = sw.seconds();
+    }
+    ~embree_instanced_scene() {
+        rtcReleaseScene(top_);
+        for (auto& s : shared_) rtcReleaseScene(s.second);
+        rtcReleaseDevice(device_);
+    }
+    embree_instanced_scene(const embree_instanced_scene&) = delete;
+    embree_instanced_scene& operator=(const embree_instanced_scene&) = delete;
+
+    // Primary hits over the image, one rtcIntersect1 per ray, on every core.
+    long single(const pinhole_camera<float>& cam) const {
+        std::atomic<long> hits{0};
+        for_each_row(cam.height, [&](int row) {
+            RTCIntersectContext context;
+            rtcInitIntersectContext(&context);
+            long h = 0;
+            for (int col = 0; col < cam.width; ++col) {
+                const ray<float> r = cam.primary_ray(col, row);
+                RTCRayHit rh;
+                rh.ray.org_x = r.origin.x, rh.ray.org_y = r.origin.y, rh.ray.org_z = r.origin.z;
+                rh.ray.dir_x = r.direction.x, rh.ray.dir_y = r.direction.y, rh.ray.dir_z = r.direction.z;
+                rh.ray.tnear = 1.0f, rh.ray.tfar = infinity<float>, rh.ray.time = 0, rh.ray.mask = ~0u;
+                rh.ray.id = 0, rh.ray.flags = 0;
+                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+                rtcIntersect1(top_, &context, &rh);
+                h += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+            }
+            hits += h;
+        });
+        return hits.load();
+    }
+
+    double build_seconds = 0;
+    size_t top_spheres = 0, instances = 0, shared_spheres = 0;
+
+private:
+    RTCDevice device_;
+    RTCScene top_;
+    std::vector<std::pair<int, RTCScene>> shared_;  // object -> its flattened scene
+    std::vector<float> spheres_;                    // x, y, z, r of the top-level spheres
+
+    RTCGeometry point_spheres(const std::vector<float>& xyzr) {
+        RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+        float* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
+                                                               4 * sizeof(float), xyzr.size() / 4));
+        std::copy(xyzr.begin(), xyzr.end(), v);
+        rtcCommitGeometry(g);
+        return g;
+    }
+
+    RTCScene shared_scene(const scene_description& d, int object) {
+        for (auto& s : shared_)
+            if (s.first == object) return s.second;
+        scene_description alone = d;  // the object alone, expanded in its own space
+        alone.world = {};
+        alone.instances = {instance_placement{object, {}, {}, "embree"}};
+        const scene_description flat = flattened(alone);
+        std::vector<float> xyzr;
+        for (const auto& s : flat.world.spheres)
+            xyzr.insert(xyzr.end(), {float(s.center.x), float(s.center.y), float(s.center.z), float(s.radius)});
+        shared_spheres = flat.world.spheres.size();
+        RTCScene scene = rtcNewScene(device_);
+        rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+        RTCGeometry g = point_spheres(xyzr);
+        rtcAttachGeometry(scene, g);
+        rtcReleaseGeometry(g);
+        rtcCommitScene(scene);
+        shared_.emplace_back(object, scene);
+        return scene;
+    }
+
+    void place(const scene_description& d, int object, const affine_transform& to_world, int depth, int split) {
+        if (depth == split) {
+            RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+            rtcSetGeometryInstancedScene(g, shared_scene(d, object));
+            float xfm[12];  // column major: the linear part's columns, then the offset
+            for (int c = 0; c < 3; ++c)
+                for (int r = 0; r < 3; ++r) xfm[3 * c + r] = float(to_world.linear[c][r]);
+            for (int r = 0; r < 3; ++r) xfm[9 + r] = float(to_world.offset[r]);
+            rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+            rtcCommitGeometry(g);
+            rtcAttachGeometry(top_, g);
+            rtcReleaseGeometry(g);
+            ++instances;
+            return;
+        }
+        const object_definition& def = d.objects[size_t(object)];
+        const double scale = glm::length(to_world.linear[0]);  // a similarity: every column this long
+        for (const auto& s : def.spheres) {
+            const vec3d c = to_world.linear * s.center + to_world.offset;
+            spheres_.insert(spheres_.end(), {float(c.x), float(c.y), float(c.z), float(s.radius * scale)});
+        }
+        for (const auto& i : def.instances) place(d, i.object, then(i.to_parent, to_world), depth + 1, split);
+    }
+};
+#endif
+
+// The sphereflake of section 6's view, light and materials, flat (the
+// generator's spheres in one tree) or as instances of instances.
+scene_description flake_scene(int level, bool instanced, int size, double& generation_seconds) {
+    if (!instanced) return generated_scene(spd_database::balls, level, {2.1, 1.3, 1.7}, {0, 0, 0}, size, generation_seconds);
+    scene_description d = generated_scene(spd_database::balls, 1, {2.1, 1.3, 1.7}, {0, 0, 0}, size, generation_seconds);
+    d.world.spheres.clear(), d.world.planes.clear();
+    const double cpu0 = process_cpu_seconds();
+    object_definition top;
+    spd_generate_instanced(spd_database::balls, level, top, d.objects, {0, 1});
+    d.world.planes = top.planes;
+    d.instances = top.instances;
+    generation_seconds = process_cpu_seconds() - cpu0;
+    return d;
+}
+
+// What section 6 measures of one flake, for the comparison at its end.
+struct flake_figures {
+    double render_seconds = 0, primary_seconds = 0;  // CPU per thread, after setup
+    long rays = 0;
+    image picture{1, 1};
+    double ns_per_ray() const { return render_seconds / double(rays) * 1e9 * render_threads(); }
+};
+
+// The sphereflake by instancing at `level`: from nothing to a PNG (wall and
+// CPU time), then its render and its primary rays timed without the build.
+flake_figures instanced_flake_row(int level, int fsize) {
+    const stopwatch wall;
+    const double cpu0 = process_cpu_seconds();
     double generation = 0;
-    {
+    const scene_description d = flake_scene(level, true, fsize, generation);
+    const instanced_scene built(d);
+    render_stats st;
+    flake_figures f;
+    f.picture = render_instanced(d, built, fsize, fsize, st);
+    const std::string png = (std::filesystem::temp_directory_path() / ("rt-bench-flake-" + std::to_string(level) + ".png")).string();
+    write_png(f.picture, png);
+    const double start_to_png = wall.seconds(), start_to_png_cpu = process_cpu_seconds() - cpu0;
+    f.rays = st.rays;
+    f.render_seconds = best_seconds([&] { render_instanced(d, built, fsize, fsize, st); }, 1);
+    f.primary_seconds = best_seconds([&] { count_primary_hits_instanced(d, built, fsize, fsize); }, 1);
+    const double px = double(fsize) * fsize;
+    std::printf("   level %2d by instancing: %llu spheres from %zu objects; start to PNG %.2f s wall (%.2f s CPU); tree "
+                "%.3f MB, built in %.1f ms; render with shadows %.2f s, %ld rays, %.0f ns/ray; primary rays only %.0f "
+                "ns/ray; peak memory so far %.3f GB\n",
+                level, (unsigned long long)spd_expected_counts(spd_database::balls, level).spheres, d.objects.size(),
+                start_to_png, start_to_png_cpu, double(built.bytes()) / 1e6, built.build_seconds() * 1e3,
+                f.render_seconds, f.rays, f.ns_per_ray(), f.primary_seconds / px * 1e9 * render_threads(), peak_rss_gb());
+    std::fflush(stdout);
+#ifdef RT_HAVE_EMBREE
+    if (embree_scene::spheres_supported()) {
+        // Embree follows one level of instances: cut the flake at depth
+        // level / 2 (level 8: 820 top spheres and 6,561 instances of one
+        // level-4 flake of 7,381 spheres; level 10: 7,381 and 59,049 of a
+        // level-5 flake of 66,430). Spheres only, against ours without the
+        // ground plane on the same rays.
+        scene_description no_ground = d;
+        no_ground.world.planes.clear();
+        const instanced_scene ours(no_ground);
+        long ours_hits = 0, hits1 = 0;
+        const double ours_primary = best_seconds([&] { ours_hits = count_primary_hits_instanced(no_ground, ours, fsize, fsize); }, 1);
+        const embree_instanced_scene e(d, level / 2);
+        const double single = best_seconds([&] { hits1 = e.single(float_camera(d, fsize)); }, runs);
+        std::printf("   level %2d in Embree (two levels: %zu top spheres, %zu instances of one flake of %zu spheres; no "
+                    "ground plane): build %.2f s, primary rays %.0f ns/ray (rtcIntersect1); ours on the same spheres "
+                    "%.0f ns/ray (ours/E1 %.2fx); hits ours/E1 %ld/%ld\n",
+                    level, e.top_spheres, e.instances, e.shared_spheres, e.build_seconds,
+                    single / px * 1e9 * render_threads(), ours_primary / px * 1e9 * render_threads(), single / ours_primary,
+                    ours_hits, hits1);
+        std::fflush(stdout);
+    }
+#endif
+    return f;
+}
+
+void big_scenes(int size, bool flake, bool mesh_too) {
+    double generation = 0;
+    if (mesh_too) {
         const scene_description mesh = generated_scene(spd_database::tetra, 10, {3.2, -4.8, 2.4}, {0, 0, 0}, size,
                                                        generation);
         tree_header("5. a 1M-triangle mesh: SPD tetra size 10", size);
         tree_row("tetra 10", mesh, size);
     }
-    if (!flake) return;
     const int fsize = 1024;
-    const scene_description d = generated_scene(spd_database::balls, 8, {2.1, 1.3, 1.7}, {0, 0, 0}, fsize, generation);
-    std::printf("\n6. the sphereflake, SPD balls size 8: %zu spheres and a ground plane, %dx%d, one light with shadows\n",
-                d.world.spheres.size(), fsize, fsize);
-    std::printf("   generation: %.2f s CPU (one thread)\n", generation);
+    std::printf("\n6. the sphereflake, SPD balls, 1024x1024, one light with shadows: by instancing (levels 10 and 8; "
+                "rt-render's two-level tree, tools/render/instanced_path.hpp), then flat (level 8: the same spheres "
+                "in one tree)\n");
+    std::printf("   (ns/ray: time per ray on one thread, CPU time; render: primary and shadow rays with shading)\n");
+    instanced_flake_row(10, fsize);
+    const flake_figures by_instances = instanced_flake_row(8, fsize);
+    if (!flake) return;
+    const scene_description d = flake_scene(8, false, fsize, generation);
+    std::printf("   level  8 flat: %zu spheres and a ground plane\n", d.world.spheres.size());
+    std::printf("   generation: %.2f s CPU\n", generation);
     const scene_plan plan = make_plan(d, 1e-3, std::nullopt);
     std::printf("   %s\n", plan.describe().c_str());
     tree_figures tf;
     const double build = best_seconds([&] { tf = build_trees_only(d); }, 1);
-    long rays = 0;
+    flake_figures flat;
     const double render_trace = best_seconds_after_setup(
         [&](render_stats& st) {
-            render_fast(d, plan, fsize, fsize, st);
-            rays = st.rays;
+            flat.picture = render_fast(d, plan, fsize, fsize, st);
+            flat.rays = st.rays;
         },
         1);
+    flat.render_seconds = render_trace;
     std::printf("   ours: tree build %.2f s (CPU per thread; %.1f MB, depth %zu), render with shading and shadows %.2f s "
-                "after its own setup, %ld rays, %.2f Mrays/s; peak memory so far %.2f GB\n",
-                build, double(tf.bytes) / 1e6, tf.depth, render_trace, rays, double(rays) / render_trace / 1e6,
-                peak_rss_gb());
+                "after its own setup, %ld rays, %.2f Mrays/s, %.0f ns/ray; peak memory so far %.2f GB\n",
+                build, double(tf.bytes) / 1e6, tf.depth, render_trace, flat.rays, double(flat.rays) / render_trace / 1e6,
+                flat.ns_per_ray(), peak_rss_gb());
+    std::fflush(stdout);
+    constexpr int flake_trace_repeats = 4;
+    long ours_hits = 0;
+    const double px = double(fsize) * fsize;
+    flat.primary_seconds =
+        best_seconds_after_setup(
+            [&](render_stats& st) { ours_hits = count_primary_hits(d, plan, fsize, fsize, flake_trace_repeats, &st); },
+            1) /
+        flake_trace_repeats;
+    const compare_result same = compare_images(by_instances.picture, flat.picture, compare_tolerance{});
+    std::printf("   level 8, flat against by instancing, same run: render with shadows %.0f against %.0f ns/ray "
+                "(instanced/flat %.2fx the time), primary rays %.0f against %.0f ns/ray (%.2fx); pictures: %s\n",
+                flat.ns_per_ray(), by_instances.ns_per_ray(), by_instances.ns_per_ray() / flat.ns_per_ray(),
+                flat.primary_seconds / px * 1e9 * render_threads(), by_instances.primary_seconds / px * 1e9 * render_threads(),
+                by_instances.primary_seconds / flat.primary_seconds, same.summary(compare_tolerance{}).c_str());
     std::fflush(stdout);
 #ifdef RT_HAVE_EMBREE
     if (embree_scene::spheres_supported()) {
-        constexpr int flake_trace_repeats = 4;
         std::unique_ptr<embree_scene> e;
         const double ebuild = best_seconds([&] { e = std::make_unique<embree_scene>(d); }, 1);
         const pinhole_camera<float> cam = float_camera(d, fsize);
-        long hits1 = 0, hits16 = 0, ours_hits = 0;
+        long hits1 = 0, hits16 = 0;
         // Best of `runs`: a trace of these rays takes a tenth of a second, and
         // one run of it read anywhere from 5.7 to 9.7 Mrays/s.
         const double single = best_seconds([&] { hits1 = e->single(cam); }, runs);
         const double packets = best_seconds([&] { hits16 = e->packets16(cam); }, runs);
-        const double ours_trace =
-            best_seconds_after_setup(
-                [&](render_stats& st) { ours_hits = count_primary_hits(d, plan, fsize, fsize, flake_trace_repeats, &st); },
-                1) /
-            flake_trace_repeats;
-        const double px = double(fsize) * fsize;
-        std::printf("   Embree (spheres only: no infinite plane in Embree): build %.2f s, primary rays %.2f Mrays/s "
+        std::printf("   Embree, flat (spheres only: no infinite plane in Embree): build %.2f s, primary rays %.2f Mrays/s "
                     "(rtcIntersect1), %.2f Mrays/s (rtcIntersect16); ours on the same primary rays %.2f Mrays/s "
                     "(%s); hits ours/E1/E16 %ld/%ld/%ld; peak memory %.2f GB\n",
-                    ebuild, px / single / 1e6, px / packets / 1e6, px / ours_trace / 1e6,
+                    ebuild, px / single / 1e6, px / packets / 1e6, px / flat.primary_seconds / 1e6,
                     plan.prec == precision::single ? "float" : "double", ours_hits, hits1, hits16, peak_rss_gb());
     }
 #endif
@@ -543,8 +758,9 @@ int main(int argc, char** argv) {
     app.add_option("--runs", runs, "runs per figure (the median is printed)")->check(CLI::Range(1, 50))->capture_default_str();
     app.add_flag("--wall", wall_clock, "wall-clock time instead of CPU time per thread");
     app.add_option("--size", size, "image side in pixels")->check(CLI::Range(8, 4096))->capture_default_str();
-    bool no_flake = false;
-    app.add_flag("--no-flake", no_flake, "leave out the 48-million-sphere sphereflake (section 6)");
+    bool no_flake = false, flake_only = false;
+    app.add_flag("--no-flake", no_flake, "leave out the flat 48-million-sphere sphereflake (section 6; its rows by instancing stay)");
+    app.add_flag("--flake-only", flake_only, "section 6 only (the sphereflake by instancing and flat)");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -564,11 +780,15 @@ int main(int argc, char** argv) {
                 render_threads(), runs,
                 wall_clock ? "wall-clock time" : "time = process CPU time / threads (immune to other jobs' load)");
     try {
+        if (flake_only) {
+            big_scenes(size, !no_flake, false);
+            return 0;
+        }
         sphere_table(counts, size);
         feature_table(size);
         pixel_table(sizes);
         tree_table(tree_counts, size);
-        if (!quick) big_scenes(size, !no_flake);
+        if (!quick) big_scenes(size, !no_flake, true);
     } catch (const not_implemented& e) {
         std::fprintf(stderr, "rt-bench: %s\n", e.what());
         return exit_not_implemented;

@@ -7,6 +7,8 @@
 #   flake.txt     rt-render on the 48-million-sphere sphereflake, start to
 #                 PNG, under /usr/bin/time -v (peak memory), and its PNG
 #   tetra.txt     the same for the 1M-triangle Sierpinski tetrahedron
+#   flake10.txt   the same for the level-10 sphereflake by instancing
+#                 (3,922,632,451 spheres; targets: under 60 s, under 1 GB)
 #   scaling.svg   time per ray against N (tools/bench/plot_scaling.py)
 # Usage: tools/bench/run-all.sh [OUT_DIR]
 set -eu
@@ -27,7 +29,9 @@ bin=build/release/bin
   > "$out/flake.txt" 2>&1
 /usr/bin/time -v "$bin/rt-render" tools/bench/scenes/spd-tetra-10.json --out "$out/tetra-10.png" \
   > "$out/tetra.txt" 2>&1
+/usr/bin/time -v "$bin/rt-render" tools/bench/scenes/spd-balls-10-instanced.json --out "$out/flake-10.png" \
+  > "$out/flake10.txt" 2>&1
 echo "after: $(uptime)" >> "$out/machine.txt"
 python3 tools/bench/plot_scaling.py "$out/bench.txt" "$out/scaling.svg"
 cat "$out/machine.txt"
-grep -E "rendered|tree:|Maximum resident|Elapsed|User time|System time" "$out/flake.txt" "$out/tetra.txt"
+grep -E "rendered|tree:|Maximum resident|Elapsed|User time|System time" "$out/flake.txt" "$out/tetra.txt" "$out/flake10.txt"

@@ -461,6 +461,20 @@ image render_instanced(const scene_description& description, const instanced_sce
     return img;
 }
 
+long count_primary_hits_instanced(const scene_description& description, const instanced_scene& built, int width,
+                                  int height) {
+    const scene_camera<double> camera(description.camera, width, height);
+    const double tmin = camera.primary_range().min;
+    std::atomic<long> hits{0};
+    for_each_row(height, [&](int row) {
+        long h = 0;
+        for (int col = 0; col < width; ++col)
+            h += built.closest(camera.primary_ray(col, row), tmin, infinity<double>).material >= 0;
+        hits += h;
+    });
+    return hits.load();
+}
+
 // ---- flattening ---------------------------------------------------------
 
 namespace {

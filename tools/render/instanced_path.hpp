@@ -72,6 +72,11 @@ private:
 image render_instanced(const scene_description& scene, const instanced_scene& built, int width, int height,
                        render_stats& stats);
 
+// Primary rays only, closest hit only, no shading: how many pixels hit
+// something (the benchmark's raw intersection throughput, as
+// count_primary_hits in fast_path.hpp for a flat scene).
+long count_primary_hits_instanced(const scene_description& scene, const instanced_scene& built, int width, int height);
+
 // The scene with every instance expanded into world-space shapes: spheres
 // under similarity transforms only (anything else is an ellipsoid: throws
 // std::invalid_argument). For comparing flat with instanced renders.
