@@ -2,6 +2,7 @@
 #   -DPROGRAM=...  -DARGS=a|b|c  -DEXPECT_EXIT=N
 #   -DEXPECT_OUTPUT=text   (optional) text that must appear in stdout+stderr
 #   -DCOMPARE=a.png|b.png  (optional, with -DIMGCMP=...) images that must match after the run
+#   -DEXPECT_COMPARE_FAILS=ON  (optional) the images must instead differ: imgcmp exits 1 (not 2, an unreadable file)
 string(REPLACE "|" ";" args "${ARGS}")
 execute_process(COMMAND "${PROGRAM}" ${args} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err
                 TIMEOUT 100)
@@ -19,7 +20,11 @@ if(DEFINED COMPARE)
   string(REPLACE "|" ";" images "${COMPARE}")
   execute_process(COMMAND "${IMGCMP}" ${images} RESULT_VARIABLE cmp_status OUTPUT_VARIABLE cmp_out ERROR_VARIABLE cmp_out)
   message("${cmp_out}")
-  if(NOT cmp_status EQUAL 0)
+  if(EXPECT_COMPARE_FAILS)
+    if(NOT cmp_status EQUAL 1)
+      message(FATAL_ERROR "expected the two pictures to differ (imgcmp exit 1), got exit ${cmp_status}")
+    endif()
+  elseif(NOT cmp_status EQUAL 0)
     message(FATAL_ERROR "the two renders differ")
   endif()
 endif()

@@ -29,6 +29,32 @@ TEST_CASE("a spheres-only scene leaves out planes, triangles, lighting and shado
     CHECK(contains(line, "left out: plane loop, triangle loop, lighting and shadow rays (no lights)"));
 }
 
+TEST_CASE("a matte scene makes no secondary rays, and mirrors and glass are counted and named") {
+    const scene_plan matte = make_plan(spheres_at_distance(5, 1), 1e-3, std::nullopt);
+    CHECK(matte.mirrors == 0);
+    CHECK(matte.glass == 0);
+    CHECK_FALSE(matte.secondary_rays());
+    CHECK(contains(matte.describe(), "reflection and refraction (no mirror or glass)"));
+
+    // Two mirror spheres, one glass sphere and a matte plane; one material
+    // both mirror and glass counts as both.
+    const scene_description shiny = parse_scene(R"({"camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]},
+        "materials": [{"name": "matte"}, {"name": "mirror", "mirror": [0.5, 0, 0]}, {"name": "glass", "ior": 1.5}],
+        "spheres": [{"center": [0, 0, 0], "radius": 1, "material": "mirror"},
+                    {"center": [2, 0, 0], "radius": 1, "material": "mirror"},
+                    {"center": [-2, 0, 0], "radius": 1, "material": "glass"}],
+        "planes": [{"point": [0, -1, 0], "normal": [0, 1, 0], "material": "matte"}]})",
+                                                "plan-shiny.json");
+    scene_plan plan = make_plan(shiny, 1e-3, std::nullopt);
+    plan.depth = 3;
+    CHECK(plan.mirrors == 2);
+    CHECK(plan.glass == 1);
+    CHECK(plan.secondary_rays());
+    const std::string line = plan.describe();
+    CHECK(contains(line, "reflected rays (2 mirror objects), reflected and refracted rays (1 glass objects), up to 3 bounces"));
+    CHECK_FALSE(contains(line, "no mirror or glass"));
+}
+
 TEST_CASE("a well-conditioned scene gets float and the plain quadratic") {
     const scene_plan plan = make_plan(spheres_at_distance(5, 1), 1e-3, std::nullopt);
     CHECK(plan.prec == precision::single);

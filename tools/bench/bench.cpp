@@ -12,13 +12,16 @@
 //      spheres, and the ratios;
 //   2. mixed scenes: the cost of each feature (planes, triangles, lights and
 //      shadow rays) on top of spheres only;
-//   3. how the time scales with the number of pixels.
+//   3. how the time scales with the number of pixels;
+//   8. samples per second at 16 samples per pixel: the Cornell box path
+//      traced, and the sphereflake on the specialised path.
 // Each figure is the fastest of R runs (default 3); brute force and Embree
 // are timed in turn within each run, so both see the same machine. Timings are reported,
 // never asserted: this is not a test.
 #include "fast_path.hpp"
 #include "general_path.hpp"
 #include "instanced_path.hpp"
+#include "render_planned.hpp"
 #include "scene_plan.hpp"
 
 #include "common/image_compare.hpp"
@@ -38,6 +41,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <random>
 #include <thread>
@@ -748,6 +752,49 @@ void big_scenes(int size, bool flake, bool mesh_too) {
 #endif
 }
 
+// 8. Samples per second at 16 samples per pixel (stratified), the renderer
+// the plan picks for each scene (render_planned): the Cornell box path traced
+// (chapter 12's path loop, every ray through chapter 03's loop) and the
+// sphereflake on the specialised path (16 primary rays per pixel in the
+// packets, shading and shadow rays). CPU time per thread without the
+// scene's setup, best of `runs`.
+void samples_row(const char* name, const scene_description& d, bool path_traced, int size, int spp) {
+    scene_plan plan = make_plan(d, 1e-3, std::nullopt);
+    plan.spp = spp;
+    plan.path_traced = path_traced;
+    if (plan.sampled()) plan.prec = precision::double_;  // as rt-render draws it
+    long samples = 0;
+    const double seconds = best_seconds_after_setup(
+        [&](render_stats& st) {
+            render_planned(d, plan, size, size, st);
+            samples = st.samples;
+        },
+        runs);
+    std::printf("   %-40s | %7dx%-5d | %10ld | %9.0f | %11.3f | %s\n", name, size, size, samples, seconds * 1e3,
+                double(samples) / seconds / 1e6, renderer_name(plan));
+    std::fflush(stdout);
+}
+
+void samples_table(int size, bool quick) {
+    constexpr int spp = 16;
+    std::printf("\n8. samples per second, %d samples per pixel (stratified, one PCG32 stream per pixel)\n", spp);
+    std::printf("   %-40s | %13s | %10s | %9s | %11s | %s\n", "scene", "image", "samples", "ms", "Msamples/s",
+                "renderer");
+    const char* box_file = RT_SCENES_DIR "/ch12-cornell-box.json";
+    if (std::ifstream(box_file).good())
+        samples_row("Cornell box (scenes/ch12-cornell-box.json)", load_scene_file(box_file), true, quick ? 16 : 128, spp);
+    else
+        std::printf("   Cornell box: %s is not there\n", box_file);
+    double generation = 0;
+    const int level = quick ? 2 : 6;
+    const scene_description flake =
+        generated_scene(spd_database::balls, level, {2.1, 1.3, 1.7}, {0, 0, 0}, size, generation);
+    samples_row(("sphereflake, SPD balls size " + std::to_string(level) + " (" +
+                 std::to_string(flake.world.spheres.size()) + " spheres)")
+                    .c_str(),
+                flake, false, size, spp);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -758,9 +805,10 @@ int main(int argc, char** argv) {
     app.add_option("--runs", runs, "runs per figure (the median is printed)")->check(CLI::Range(1, 50))->capture_default_str();
     app.add_flag("--wall", wall_clock, "wall-clock time instead of CPU time per thread");
     app.add_option("--size", size, "image side in pixels")->check(CLI::Range(8, 4096))->capture_default_str();
-    bool no_flake = false, flake_only = false;
+    bool no_flake = false, flake_only = false, samples_only = false;
     app.add_flag("--no-flake", no_flake, "leave out the flat 48-million-sphere sphereflake (section 6; its rows by instancing stay)");
     app.add_flag("--flake-only", flake_only, "section 6 only (the sphereflake by instancing and flat)");
+    app.add_flag("--samples-only", samples_only, "only section 8, samples per second at 16 samples per pixel");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -784,11 +832,16 @@ int main(int argc, char** argv) {
             big_scenes(size, !no_flake, false);
             return 0;
         }
+        if (samples_only) {
+            samples_table(size, quick);
+            return 0;
+        }
         sphere_table(counts, size);
         feature_table(size);
         pixel_table(sizes);
         tree_table(tree_counts, size);
         if (!quick) big_scenes(size, !no_flake, true);
+        samples_table(size, quick);
     } catch (const not_implemented& e) {
         std::fprintf(stderr, "rt-bench: %s\n", e.what());
         return exit_not_implemented;

@@ -42,8 +42,10 @@
 #include "look.hpp"
 
 #include "common/timing.hpp"
+#include "common/random.hpp"  // one PCG32 stream per pixel, for several samples per pixel
 #include "common/scene.hpp"   // material_at: the checker pattern
 #include "06-shading/shading.hpp"   // chapter 06's shade(), for lit scenes
+#include "11-sampling/sampling.hpp"  // chapter 11's stratified_sample and thin_lens_ray, for --spp N
 
 #include "common/render.hpp"
 #include "fast_path_kernels.hpp"  // the plane and triangle kernels
@@ -59,6 +61,7 @@
 #include <limits>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 // Run-time dispatch. This file (with its parts) is compiled three times (tools/render/
 // CMakeLists.txt): plain x86-64, AVX2 + FMA, and AVX-512, each time in its
@@ -153,6 +156,22 @@ struct context {
         }
     }
 
+    // The same packet through points of the pixels' squares instead of their
+    // centres: lane k's ray passes through (col + film[k].x, row + film[k].y),
+    // by chapter 11's thin_lens_ray with no lens (the pinhole's ray through
+    // that point; through the centre it is primary_ray's, bit for bit).
+    void fill_samples(packet<T>& p, int col0, int row0, const ch11::vec2<T>* film) const {
+        const ch11::thin_lens<T> pinhole{T(0), T(1)};
+        for (int k = 0; k < W; ++k) {
+            const int col = std::min(col0 + k % tile_w, camera.width() - 1);
+            const int row = std::min(row0 + k / tile_w, camera.height() - 1);
+            const ray<T> r = ch11::thin_lens_ray(camera.pinhole, pinhole, T(col) + film[k].x, T(row) + film[k].y,
+                                                 ch11::vec2<T>(T(0), T(0)));
+            p.ox[k] = r.origin.x, p.oy[k] = r.origin.y, p.oz[k] = r.origin.z;
+            p.dx[k] = r.direction.x, p.dy[k] = r.direction.y, p.dz[k] = r.direction.z;
+        }
+    }
+
     template <sphere_mode SM, bool Planes, bool Tris>
     void trace(const packet<T>& p, T* t, index_t<T>* object) const {
         if (camera.type == camera_description::kind::pinhole)
@@ -182,13 +201,18 @@ struct context {
 };
 
 template <class T, sphere_mode SM, bool Planes, bool Tris, bool Lights>
-image render_with(const scene_description& d, int width, int height, bool tree, render_stats& stats) {
+image render_with(const scene_description& d, int width, int height, bool tree, int spp, std::uint64_t seed,
+                  render_stats& stats) {
     const stopwatch setup;
     const double setup_cpu = process_cpu_seconds();
     const context<T> ctx(d, width, height, tree);
     stats.setup_seconds = setup.seconds();
     stats.setup_cpu_seconds = process_cpu_seconds() - setup_cpu;
     if (tree) std::fprintf(stderr, "%s\n", ctx.describe_trees().c_str());  // stderr: outside rt-bench's tables
+    if (spp > 1 && ctx.camera.type != camera_description::kind::pinhole)
+        throw std::invalid_argument("several samples per pixel are drawn through a pinhole camera (chapter 11's), not "
+                                    "an orthographic one");
+    const int strata = int(std::lround(std::sqrt(double(spp))));  // spp is a square: strata x strata cells
     image img(width, height);
     std::atomic<long> shadow_rays{0};
     for_each_row((height + tile_h - 1) / tile_h, [&](int tile_row) {
@@ -203,31 +227,58 @@ image render_with(const scene_description& d, int width, int height, bool tree, 
         packet<T> p;
         alignas(64) T t[W];
         alignas(64) index_t<T> object[W];
+        // The colour lane k's ray brings back, from the packet just traced.
+        auto shade_lane = [&](int k) -> color {
+            if (object[k] < 0) return d.world.background;
+            const vec3<T> origin(p.ox[k], p.oy[k], p.oz[k]), direction(p.dx[k], p.dy[k], p.dz[k]);
+            const vec3<T> point = origin + t[k] * direction;
+            // The side the viewer sees, by the chapters' one face rule (common/hit_record.hpp).
+            const vec3<T> n = facing_normal(ctx.outward_normal(size_t(object[k]), point), direction);
+            const material m = ctx.material_at_hit(size_t(object[k]), point);
+            if constexpr (Lights)
+                return ch06::shade(point, n, -direction, m, d.world.lights, d.world.ambient, occluded);
+            else
+                return unlit_colour(m, n, direction);
+        };
+        auto inside = [&](int col0, int k) { return col0 + k % tile_w < width && row0 + k / tile_w < height; };
+        std::vector<pcg32> streams;
         for (int col0 = 0; col0 < width; col0 += tile_w) {
-            ctx.fill(p, col0, row0);
-            ctx.template trace<SM, Planes, Tris>(p, t, object);
-            for (int k = 0; k < W; ++k) {
-                const int col = col0 + k % tile_w, row = row0 + k / tile_w;
-                if (col >= width || row >= height) continue;
-                color& out = img.at(col, row);
-                if (object[k] < 0) {
-                    out = d.world.background;
-                    continue;
-                }
-                const vec3<T> origin(p.ox[k], p.oy[k], p.oz[k]), direction(p.dx[k], p.dy[k], p.dz[k]);
-                const vec3<T> point = origin + t[k] * direction;
-                // The side the viewer sees, by the chapters' one face rule (common/hit_record.hpp).
-                const vec3<T> n = facing_normal(ctx.outward_normal(size_t(object[k]), point), direction);
-                const material m = ctx.material_at_hit(size_t(object[k]), point);
-                if constexpr (Lights)
-                    out = ch06::shade(point, n, -direction, m, d.world.lights, d.world.ambient, occluded);
-                else
-                    out = unlit_colour(m, n, direction);
+            if (spp == 1) {  // one ray through each pixel's centre
+                ctx.fill(p, col0, row0);
+                ctx.template trace<SM, Planes, Tris>(p, t, object);
+                for (int k = 0; k < W; ++k)
+                    if (inside(col0, k)) img.at(col0 + k % tile_w, row0 + k / tile_w) = shade_lane(k);
+                continue;
             }
+            // spp samples per pixel, one in each cell of a strata x strata grid
+            // over the pixel's square, jittered by the pixel's own stream: the
+            // picture is the same on every run and thread count. A box filter:
+            // the pixel is the samples' mean.
+            streams.clear();
+            for (int k = 0; k < W; ++k)
+                streams.push_back(pixel_stream(seed, std::min(col0 + k % tile_w, width - 1),
+                                               std::min(row0 + k / tile_w, height - 1), width));
+            color sum[W];
+            for (color& c : sum) c = color(0.0f);
+            ch11::vec2<T> film[W];
+            for (int sample = 0; sample < spp; ++sample) {
+                for (int k = 0; k < W; ++k) {
+                    const T u = streams[size_t(k)].template uniform<T>(), v = streams[size_t(k)].template uniform<T>();
+                    film[k] = ch11::stratified_sample(sample, strata, ch11::vec2<T>(u, v));
+                }
+                ctx.fill_samples(p, col0, row0, film);
+                ctx.template trace<SM, Planes, Tris>(p, t, object);
+                for (int k = 0; k < W; ++k)
+                    if (inside(col0, k)) sum[k] += shade_lane(k);
+            }
+            for (int k = 0; k < W; ++k)
+                if (inside(col0, k)) img.at(col0 + k % tile_w, row0 + k / tile_w) = sum[k] / float(spp);
         }
         shadow_rays += shadows;
     });
-    stats.rays = long(width) * long(height) + shadow_rays.load();
+    const long primary = long(width) * long(height) * long(spp);
+    stats.rays = primary + shadow_rays.load();
+    if (spp > 1) stats.samples = primary;
     return img;
 }
 
@@ -317,7 +368,8 @@ image render_fast(const scene_description& d, const scene_plan& plan, int width,
         return dispatch(mode_of(plan), plan.planes > 0, plan.triangles > 0, plan.lights > 0,
                         [&](auto SM, auto P, auto Tr, auto L) {
                             return render_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value,
-                                               decltype(L)::value>(d, width, height, plan.tree, stats);
+                                               decltype(L)::value>(d, width, height, plan.tree, plan.spp, plan.seed,
+                                                                   stats);
                         });
     };
     return plan.prec == precision::single ? run(float{}) : run(double{});

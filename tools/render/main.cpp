@@ -1,6 +1,6 @@
 // rt-render — renders any scene file with the exercises the build selects.
 //
-//   rt-render SCENE.json [--out FILE.png] [--width W] [--height H]
+//   rt-render SCENE.json [--out FILE.png] [--width W] [--height H] [--depth N] [--spp N] [--seed S] [--path]
 //             [--precision auto|float|double] [--bound B] [--general] [--error] [--heatmap]
 //
 // Before rendering it prints its plan in one line: what the scene holds,
@@ -15,6 +15,7 @@
 #include "fast_path.hpp"
 #include "general_path.hpp"
 #include "instanced_path.hpp"
+#include "render_planned.hpp"
 #include "scene_plan.hpp"
 
 #include "common/scene_file.hpp"
@@ -25,6 +26,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 
@@ -102,15 +104,24 @@ void write_heatmap(const scene_description& d, const scene_plan& plan, int width
 
 int main(int argc, char** argv) {
     std::string scene_path, out = "out/render.png", prec = "auto";
-    int width = 0, height = 0;
+    int width = 0, height = 0, depth = 5, spp = 1;
+    std::uint64_t seed = scene_plan{}.seed;
     double bound = 1e-3;
-    bool general = false, error = false, heatmap = false, flatten = false;
+    bool general = false, error = false, heatmap = false, flatten = false, path_trace = false;
 
     CLI::App app{"rt-render: renders a scene file (scenes/README.md) with the exercises this build selects"};
     app.add_option("scene", scene_path, "scene file (.json)")->required();
     app.add_option("-o,--out", out, "PNG file to write")->capture_default_str();
     app.add_option("--width", width, "image width (default: the scene's)")->check(CLI::Range(1, max_image_side));
     app.add_option("--height", height, "image height (default: the scene's)")->check(CLI::Range(1, max_image_side));
+    app.add_option("--depth", depth, "mirrors and glass: bounces followed after the first hit (chapter 09's --depth)")
+        ->check(CLI::Range(0, 50))
+        ->capture_default_str();
+    app.add_option("--spp", spp, "samples per pixel, a square number (stratified on a grid): 1, 4, 9, 16, ...")
+        ->check(CLI::Range(1, 4096 * 4096))
+        ->capture_default_str();
+    app.add_option("--seed", seed, "seed of every pixel's random stream (sampled renders)")->capture_default_str();
+    app.add_flag("--path", path_trace, "path trace the scene (chapter 12): sphere lights, diffuse surfaces, bounces");
     app.add_option("--precision", prec, "auto: the cheapest that meets --bound")
         ->check(CLI::IsMember({"auto", "float", "double"}))
         ->capture_default_str();
@@ -131,6 +142,11 @@ int main(int argc, char** argv) {
         return app.exit(e);
     }
 
+    if (const int side = int(std::lround(std::sqrt(double(spp)))); side * side != spp) {
+        std::fprintf(stderr, "rt-render: --spp expects a square number of samples per pixel (1, 4, 9, 16, ...): they "
+                             "are stratified on a grid of sqrt(N) x sqrt(N) cells; got %d\n", spp);
+        return 1;
+    }
     try {
         scene_description scene = load_scene_file(scene_path);
         const int w = width > 0 ? width : scene.camera.width, h = height > 0 ? height : scene.camera.height;
@@ -167,27 +183,45 @@ int main(int argc, char** argv) {
         if (prec == "float") forced = precision::single;
         if (prec == "double") forced = precision::double_;
         scene_plan plan = make_plan(scene, bound, forced);
-        if (general) {
-            plan.general = true;
-            plan.prec = forced.value_or(precision::double_);
-        }
+        plan.depth = depth;
+        plan.spp = spp;
+        plan.seed = seed;
+        plan.path_traced = plan.path_traced || path_trace;
+        // Mirrors and glass (chapter 09's trace) and sampled renders (chapters
+        // 11 and 12): in double unless told, as the chapters' programs draw
+        // them, on either path.
+        if (general || plan.secondary_rays() || plan.sampled()) plan.prec = forced.value_or(precision::double_);
+        if (plan.sampled() && (error || heatmap))
+            throw std::runtime_error("--error and --heatmap measure one primary ray per pixel, not a sampled render");
+        if (general && spp > 1 && !plan.sampled())
+            throw std::runtime_error("--general draws one ray per pixel (chapter 03 to 08's loops): leave out --spp "
+                                     "or --general");
+        plan.general = general;
         std::printf("%s\n", plan.describe().c_str());
         std::fflush(stdout);
 
         render_stats stats;
         stopwatch sw;
-        image img = general ? render_general(scene, plan, w, h, stats) : render_fast(scene, plan, w, h, stats);
+        image img = render_planned(scene, plan, w, h, stats);
         const double seconds = sw.seconds();
         const double tracing = seconds - stats.setup_seconds;  // rays per second leave the tree's build out
 
         std::filesystem::path path(out);
         if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
         write_png(img, out);
-        std::printf("rendered %s: %dx%d, %s path%s%s, %.1f ms (setup %.1f ms, tracing and shading %.1f ms), %ld rays "
-                    "(%ld primary), %.2f Mrays/s while tracing -> %s\n",
-                    scene_path.c_str(), w, h, general ? "general" : "specialised", general ? "" : " on ",
-                    general ? "" : fast_path_isa(), seconds * 1e3, stats.setup_seconds * 1e3, tracing * 1e3,
-                    stats.rays, long(w) * long(h), double(stats.rays) / tracing / 1e6, out.c_str());
+        const char* path_name = renderer_name(plan);
+        const bool on_isa = !general && !plan.secondary_rays() && !plan.sampled();
+        std::printf("rendered %s: %dx%d, %s path%s%s, %.1f ms (setup %.1f ms, tracing and shading %.1f ms), %ld %s, "
+                    "%.2f M%s/s while tracing -> %s\n",
+                    scene_path.c_str(), w, h, path_name, on_isa ? " on " : "", on_isa ? fast_path_isa() : "",
+                    seconds * 1e3, stats.setup_seconds * 1e3, tracing * 1e3, stats.rays,
+                    stats.primary_only ? "primary rays (the chapter's loop does not count its secondary and shadow rays)"
+                                       : ("rays (" + std::to_string(stats.samples > 0 ? stats.samples : long(w) * long(h)) +
+                                          " primary)").c_str(),
+                    double(stats.rays) / tracing / 1e6, stats.primary_only ? " primary rays" : "rays", out.c_str());
+        if (stats.samples > 0)
+            std::printf("samples: %ld (%d per pixel), %.3f Msamples/s while tracing\n", stats.samples, plan.spp,
+                        double(stats.samples) / tracing / 1e6);
         if (error) report_error(scene, plan, w, h);
         if (heatmap) write_heatmap(scene, plan, w, h, out);
         return 0;

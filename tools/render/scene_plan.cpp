@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <vector>
 
 namespace rt::render_tool {
 
@@ -16,6 +17,47 @@ double epsilon_of(precision p) {
 
 const char* name_of(precision p) { return p == precision::single ? "float" : "double"; }
 const char* name_of(sphere_formulation f) { return f == sphere_formulation::plain ? "plain" : "robust"; }
+
+bool is_black(const color& c) { return !(c.r > 0 || c.g > 0 || c.b > 0); }
+
+// How many objects reflect diffusely (a diffuse colour above 0), counting up
+// to 2: the path tracer only asks whether there is more than one.
+size_t diffuse_objects(const scene<double>& w) {
+    size_t n = 0;
+    auto count = [&](const auto& shapes) {
+        for (const auto& shape : shapes) {
+            if (n >= 2) return;
+            n += !is_black(w.materials[size_t(shape.material)].diffuse);
+        }
+    };
+    count(w.spheres);
+    count(w.planes);
+    count(w.triangles);
+    return n;
+}
+
+bool is_mirror(const material& m) { return m.mirror.r > 0 || m.mirror.g > 0 || m.mirror.b > 0; }
+bool is_glass(const material& m) { return m.ior > 0; }
+
+// How many objects have a mirror and how many a glass material. The
+// materials are few, the objects may be millions: the objects are only
+// counted when some material is shiny at all.
+void count_shiny_objects(const scene<double>& w, size_t& mirrors, size_t& glass) {
+    mirrors = glass = 0;
+    if (std::none_of(w.materials.begin(), w.materials.end(),
+                     [](const material& m) { return is_mirror(m) || is_glass(m); }))
+        return;
+    auto count = [&](const auto& shapes) {
+        for (const auto& shape : shapes) {
+            const material& m = w.materials[size_t(shape.material)];
+            mirrors += is_mirror(m);
+            glass += is_glass(m);
+        }
+    };
+    count(w.spheres);
+    count(w.planes);
+    count(w.triangles);
+}
 
 }  // namespace
 
@@ -46,6 +88,11 @@ scene_plan make_plan(const scene_description& scene, double bound, std::optional
     plan.triangles = w.triangles.size();
     plan.lights = w.lights.size();
     plan.tree = plan.spheres + plan.triangles >= scene_plan::tree_threshold;
+    count_shiny_objects(w, plan.mirrors, plan.glass);
+    plan.sphere_lights = size_t(std::count_if(w.lights.begin(), w.lights.end(),
+                                              [](const point_light& l) { return l.radius > 0; }));
+    plan.aperture = scene.camera.type == camera_description::kind::pinhole ? scene.camera.aperture : 0;
+    plan.bounces = !(diffuse_objects(w) <= 1 && is_black(w.background));
     plan.pinhole = scene.camera.type == camera_description::kind::pinhole;
     plan.bound = bound;
     plan.precision_forced = forced.has_value();
@@ -101,17 +148,77 @@ scene_plan make_plan(const scene_description& scene, double bound, std::optional
     return plan;
 }
 
+// The three sampled renders (sampled_path.hpp): the path tracer, chapter
+// 11's picture, and chapter 09's trace per sample.
+std::string scene_plan::describe_sampled() const {
+    auto join = [](const std::vector<std::string>& items) {
+        std::string out;
+        for (const std::string& item : items) out += (out.empty() ? "" : ", ") + item;
+        return out.empty() ? std::string("nothing") : out;
+    };
+    const std::string shapes = std::to_string(spheres) + " spheres, " + std::to_string(planes) + " planes, " +
+                               std::to_string(triangles) + " triangles";
+    const std::string pixel = std::to_string(spp) + " samples per pixel, stratified (chapter 11's stratified_sample, "
+                                                    "one PCG32 stream per pixel)";
+    char aperture_text[32];
+    std::snprintf(aperture_text, sizeof aperture_text, "%g", aperture);
+    const std::string lens = aperture > 0 ? std::string("thin lens of aperture ") + aperture_text : "";
+    std::vector<std::string> kept, left_out;
+    std::string what;
+    if (path_traced) {
+        what = "path tracer (chapter 12)";
+        kept.push_back(pixel + ", box filter");
+        if (sphere_lights)
+            kept.push_back("next-event estimation of " + std::to_string(sphere_lights) +
+                           " sphere lights (chapter 11's cone sample)");
+        else
+            left_out.push_back("light sampling (no sphere lights)");
+        if (bounces)
+            kept.push_back("cosine-weighted bounces, Russian roulette after 3, at most 24 vertices");
+        else
+            left_out.push_back("bounces (at most one diffuse object and a black background: no diffuse "
+                               "interreflection, one vertex per path)");
+        if (!lens.empty()) kept.push_back(lens); else left_out.push_back("the lens (aperture 0)");
+        left_out.push_back("point lights, ambient, highlights, checkers, mirrors and glass (chapter 12's surfaces are "
+                           "Lambertian and emit)");
+    } else if (secondary_rays()) {
+        what = "sampled recursive trace (chapters 11 and 09)";
+        kept.push_back(pixel + ", box filter, each sample chapter 09's trace (" + std::to_string(depth) + " bounces)");
+        if (!lens.empty()) kept.push_back(lens); else left_out.push_back("the lens (aperture 0)");
+        if (sphere_lights) left_out.push_back("soft shadows (chapter 09 lights a sphere light as its centre)");
+        else left_out.push_back("light sampling (no sphere lights)");
+    } else {
+        what = "sampled (chapter 11's picture)";
+        kept.push_back(pixel + ", tent filter");
+        if (sphere_lights)
+            kept.push_back(std::to_string(sphere_lights) + " sphere lights sampled by cone (soft shadows)");
+        else
+            left_out.push_back("light sampling (no sphere lights)");
+        if (lights > sphere_lights) kept.push_back(std::to_string(lights - sphere_lights) + " point lights");
+        if (!lens.empty()) kept.push_back(lens); else left_out.push_back("the lens (aperture 0)");
+        left_out.push_back("highlights (chapter 11 lights the diffuse term)");
+        left_out.push_back("bounces (no path tracer)");
+    }
+    return "plan: " + what + ": " + shapes + ", " + std::to_string(lights) + " lights; " + join(kept) +
+           "; every ray through chapter 03's loop (chapters 02, 04, 05), " + name_of(prec) + "; left out: " +
+           join(left_out);
+}
+
 std::string scene_plan::describe() const {
-    char buffer[900];
+    if (sampled()) return describe_sampled();
+    char buffer[1200];
     if (general) {
         std::snprintf(buffer, sizeof buffer,
                       "plan: GENERAL path (forced): %zu spheres, %zu planes, %zu triangles, %zu lights; "
                       "every object type tested through %s, %s, chapter 02's sphere test, "
-                      "chapter 06 shading%s; nothing left out",
+                      "chapter 06 shading%s; nothing left out%s",
                       spheres, planes, triangles, lights,
                       tree ? "chapter 08's tree (build_sah, closest_hit, any_hit; planes one by one)"
                            : "chapter 03's loop",
-                      name_of(prec), lights ? " with shadow rays" : "");
+                      name_of(prec), lights ? " with shadow rays" : "",
+                      secondary_rays() ? " (mirrors and glass: chapter 09's recursive trace, every ray through chapter "
+                                         "03's loop)"
+                                       : "");
         return buffer;
     }
     const size_t bounded = spheres + triangles;
@@ -126,16 +233,40 @@ std::string scene_plan::describe() const {
     if (triangles) note(kept, std::to_string(triangles) + " triangles"); else note(left_out, "triangle loop");
     if (lights) note(kept, std::to_string(lights) + " lights: shading + shadow rays");
     else note(left_out, "lighting and shadow rays (no lights)");
+    if (secondary_rays()) {
+        // Chapter 09's trace draws the whole picture: its own closest hit
+        // (chapter 03's loop over chapters 02, 04 and 05), its shadow rays,
+        // its recursion. The specialised kernels and the tree take no part.
+        std::string rays;
+        if (mirrors) rays = "reflected rays (" + std::to_string(mirrors) + " mirror objects)";
+        if (glass)
+            rays += (rays.empty() ? "" : ", ") + std::string("reflected and refracted rays (") + std::to_string(glass) +
+                    " glass objects)";
+        std::snprintf(buffer, sizeof buffer,
+                      "plan: recursive trace (chapter 09): %zu spheres, %zu planes, %zu triangles, %zu lights%s; "
+                      "secondary rays: %s, up to %d bounces, each from the error-bound offset origin; every ray "
+                      "through chapter 03's loop (chapters 02, 04, 05), %s; left out: the specialised kernels and "
+                      "the tree (the recursion is chapter 09's)",
+                      spheres, planes, triangles, lights, lights ? " (shading + shadow rays)" : "", rays.c_str(), depth,
+                      name_of(prec));
+        return buffer;
+    }
+    note(left_out, "reflection and refraction (no mirror or glass)");
     std::snprintf(buffer, sizeof buffer,
                   "plan: specialised path: %s; left out: %s; conditioning %.3g (extent %.3g / smallest %.3g) -> "
-                  "%s %s%s, estimated error %.2g of an object's size (bound %.2g)%s; %s",
+                  "%s %s%s, estimated error %.2g of an object's size (bound %.2g)%s; %s%s",
                   kept.empty() ? "no objects (background only)" : kept.c_str(),
                   left_out.empty() ? "nothing" : left_out.c_str(), conditioning(), extent, smallest, name_of(prec),
                   spheres ? name_of(form) : "(no sphere test)", spheres ? " sphere test" : "", estimated_error, bound,
                   estimated_error <= bound ? ""
                   : precision_forced ? " - OVER the bound: no formulation in this precision meets it"
                                      : " - OVER the bound: no formulation meets it",
-                  search.c_str());
+                  search.c_str(),
+                  spp > 1 ? ("; " + std::to_string(spp) +
+                             " samples per pixel, stratified (chapter 11's stratified_sample, one PCG32 stream per "
+                             "pixel), box filter")
+                                .c_str()
+                          : "");
     return buffer;
 }
 

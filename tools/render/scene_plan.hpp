@@ -6,7 +6,10 @@
 //      without triangles costs a test per pixel for nothing.
 //   2. Are there lights? Without lights there is no shading model to apply
 //      and no shadow ray to cast.
-//   3. How well conditioned is the scene? The precision chapter shows that
+//   3. Does any surface send secondary rays? A mirror or a glass surface
+//      (chapter 09's materials) needs reflected and refracted rays, a matte
+//      scene none: the primary-ray fast path is kept for it.
+//   4. How well conditioned is the scene? The precision chapter shows that
 //      the plain sphere formula loses digits as the square of
 //          conditioning = (size of the scene) / (size of its smallest object)
 //      and the robust formula only in proportion to it. The plan picks the
@@ -17,6 +20,7 @@
 #include "common/program.hpp"
 #include "common/scene_file.hpp"
 
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -28,6 +32,35 @@ struct scene_plan {
     // What the scene holds.
     size_t spheres = 0, planes = 0, triangles = 0, lights = 0;
     bool pinhole = true;
+
+    // Secondary rays (chapter 09): how many objects have a mirror material
+    // (any mirror component > 0) and how many a glass one (ior > 0). With
+    // either, the picture is chapter 09's recursive trace, `depth` bounces
+    // deep; without, no reflected or refracted ray is ever made.
+    size_t mirrors = 0, glass = 0;
+    int depth = 5;  // bounces after the first hit (rt-render --depth N); chapter 09's default
+    bool secondary_rays() const { return mirrors + glass > 0; }
+
+    // Sampling (chapters 11 and 12): samples per pixel (rt-render --spp N, a
+    // square number: they are stratified), the seed of every pixel's stream,
+    // the sphere lights (lights with a radius, soft shadows), a lens
+    // (aperture > 0, depth of field) and the path tracer (rt-render --path).
+    // With spp 1 and none of the others a pixel is one primary ray through
+    // its centre, as before; with more samples and only point lights the
+    // specialised path traces every sample's primary ray (fast_path.cpp).
+    int spp = 1;
+    std::uint64_t seed = 11;  // chapter 11's, so rt-render's picture of chapter 11's scene is the chapter's
+    size_t sphere_lights = 0;
+    double aperture = 0;
+    bool path_traced = false;
+    // The path tracer: whether any path needs a second vertex. Not when light
+    // can reach a diffuse surface only straight from a light (at most one
+    // diffuse object, which is convex, and a black background): then every
+    // bounce would bring back nothing that next-event estimation has not
+    // already counted.
+    bool bounces = true;
+    // Drawn by the chapters' samplers (sampled_path.hpp), not the specialised path.
+    bool sampled() const { return path_traced || sphere_lights > 0 || aperture > 0 || (secondary_rays() && spp > 1); }
 
     // Conditioning: extent is the diagonal of the box around the eye, the
     // lights, the spheres and the triangles; smallest is the smallest sphere
@@ -55,6 +88,9 @@ struct scene_plan {
 
     // The plan in one line, naming what was left out.
     std::string describe() const;
+
+private:
+    std::string describe_sampled() const;  // describe() when sampled()
 };
 
 // What a render did besides its picture: the rays it traced (primary and
@@ -62,8 +98,10 @@ struct scene_plan {
 // the first ray, so that rays per second can leave the setup out.
 struct render_stats {
     long rays = 0;
+    long samples = 0;              // sampled renders: samples taken (width * height * spp); 0 otherwise
     double setup_seconds = 0;      // wall clock: arrays and trees, before the first ray
     double setup_cpu_seconds = 0;  // the same as CPU time of the whole process (process_cpu_seconds)
+    bool primary_only = false;     // rays counts the primary rays only (a chapter's loop that does not count its own)
 };
 
 // Estimated hit-point error, in object sizes, of a formulation in a precision
