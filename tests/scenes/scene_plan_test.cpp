@@ -55,6 +55,31 @@ TEST_CASE("a matte scene makes no secondary rays, and mirrors and glass are coun
     CHECK_FALSE(contains(line, "no mirror or glass"));
 }
 
+TEST_CASE("a scene that emits is path traced; without diffuse interreflection it leaves out the bounces") {
+    // One matte sphere under an emitting one, black background: light reaches
+    // the matte sphere only straight from the lamp, which next-event
+    // estimation samples; no bounce can add anything.
+    const std::string lamp_and_ball = R"({"camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]}, "background": [0, 0, 0],
+        "materials": [{"name": "matte"}, {"name": "lamp", "diffuse": [0, 0, 0], "emission": [5, 5, 5]}],
+        "spheres": [{"center": [0, 0, 0], "radius": 1, "material": "matte"},
+                    {"center": [0, 3, 0], "radius": 0.5, "material": "lamp"}])";
+    const scene_plan lone = make_plan(parse_scene(lamp_and_ball + "}", "plan-lamp.json"), 1e-3, std::nullopt);
+    CHECK(lone.path_traced);
+    CHECK(lone.emitting_spheres == 1);
+    CHECK_FALSE(lone.bounces);
+    CHECK(contains(lone.describe(), "next-event estimation of 1 sphere lights"));
+    CHECK(contains(lone.describe(), "left out: bounces (at most one diffuse object and a black background"));
+    // A floor under the ball: the floor lights the ball and the ball the floor.
+    const scene_plan floor = make_plan(
+        parse_scene(lamp_and_ball + R"(, "planes": [{"point": [0, -1, 0], "normal": [0, 1, 0], "material": "matte"}]})",
+                    "plan-lamp-floor.json"),
+        1e-3, std::nullopt);
+    CHECK(floor.bounces);
+    CHECK(contains(floor.describe(), "cosine-weighted bounces"));
+    // Nothing emits: not path traced unless asked (rt-render --path).
+    CHECK_FALSE(make_plan(spheres_at_distance(5, 1), 1e-3, std::nullopt).path_traced);
+}
+
 TEST_CASE("a well-conditioned scene gets float and the plain quadratic") {
     const scene_plan plan = make_plan(spheres_at_distance(5, 1), 1e-3, std::nullopt);
     CHECK(plan.prec == precision::single);

@@ -4,6 +4,7 @@
 #include "11-sampling/picture.hpp"
 #include "11-sampling/sample_sequences.hpp"
 #include "12-path-tracing/path_tracing.hpp"
+#include "12-path-tracing/picture.hpp"  // max_vertices: the longest path, as chapter 12 draws it
 
 #include "common/random.hpp"
 #include "common/render.hpp"
@@ -18,40 +19,6 @@
 namespace rt::render_tool {
 
 namespace {
-
-// Longest path, as chapter 12's program: roulette ends most paths after a
-// few bounces, and every vertex draws its five numbers whether used or not.
-constexpr int max_vertices = 24;
-
-// The scene as chapter 12's path tracer sees it: every material a Lambertian
-// surface of albedo `diffuse` that emits nothing, and every sphere light an
-// emitting sphere of radiance intensity / (pi r^2) (the scene format's sphere
-// light, scenes/README.md) appended after the scene's spheres, so that
-// next-event estimation samples it and a path that meets it sees it.
-template <class T>
-ch12::path_scene<T> path_scene_of(const scene_description& d) {
-    ch12::path_scene<T> s;
-    s.geometry = convert_scene<T>(d.world);
-    s.geometry.lights.clear();  // lights are spheres here, not points
-    for (const material& m : d.world.materials) s.surfaces.push_back({m.diffuse, color(0.0f)});
-    if (!s.geometry.triangles.empty())
-        throw scene_error(d.source, 0, 0, "triangles",
-                          "the path tracer (chapter 12) draws spheres and planes; this scene has " +
-                              std::to_string(s.geometry.triangles.size()) + " triangles");
-    for (size_t i = 0; i < d.world.lights.size(); ++i) {
-        const point_light& l = d.world.lights[i];
-        if (!(l.radius > 0))
-            throw scene_error(d.source, 0, 0, "lights[" + std::to_string(i) + "]",
-                              "the path tracer (chapter 12) is lit by sphere lights: expected a \"radius\" > 0 (a "
-                              "path never meets a point)");
-        const int index = int(s.surfaces.size());
-        s.surfaces.push_back({color(0.0f), l.intensity * float(1.0 / (ch12::pi<double> * l.radius * l.radius))});
-        s.lights.push_back(int(s.geometry.spheres.size()));  // spheres come first: its object number
-        s.geometry.spheres.push_back({convert<T>(l.position), T(l.radius), index});
-    }
-    s.background = d.world.background;
-    return s;
-}
 
 // The numbers one path uses, five per vertex, from the pixel's path stream.
 template <class T>
@@ -116,12 +83,20 @@ image render_typed(const scene_description& d, const scene_plan& plan, int width
     const int spp = plan.spp;
     stats.samples = long(width) * long(height) * long(spp);
     if (plan.path_traced) {
-        const ch12::path_scene<T> s = path_scene_of<T>(d);
+        // The scene as chapter 12 sees it (path_scene_of: emitting spheres and
+        // sphere lights are its lights; what a matte path tracer has no use
+        // for is left out, and the plan line says what).
+        const ch12::path_scene<T> s = ch12::path_scene_of<T>(d);
+        if (s.lights.empty() && !plan.emitting_planes)
+            throw scene_error(d.source, 0, 0, "materials",
+                              "the path tracer (chapter 12) needs light a path can meet: a material with "
+                              "\"emission\" on a shape, or a light with a \"radius\"; this scene has " +
+                                  std::to_string(d.world.lights.size()) + " point lights and nothing that emits");
         const lens_camera<T> c(d.camera, width, height);
         ch12::path_settings settings;
         settings.next_event = !s.lights.empty();
         settings.cosine_sampling = true;
-        const int vertices = plan.bounces ? max_vertices : 1;
+        const int vertices = plan.bounces ? ch12::max_vertices : 1;
         stats.setup_seconds = setup.seconds();
         stats.setup_cpu_seconds = process_cpu_seconds() - setup_cpu;
         const interval<T> camera_range = interval<T>::in_front_of_image_plane();

@@ -93,6 +93,9 @@ scene_plan make_plan(const scene_description& scene, double bound, std::optional
                                               [](const point_light& l) { return l.radius > 0; }));
     plan.aperture = scene.camera.type == camera_description::kind::pinhole ? scene.camera.aperture : 0;
     plan.bounces = !(diffuse_objects(w) <= 1 && is_black(w.background));
+    for (const auto& x : w.spheres) plan.emitting_spheres += !is_black(w.materials[size_t(x.material)].emission);
+    for (const auto& x : w.planes) plan.emitting_planes = plan.emitting_planes || !is_black(w.materials[size_t(x.material)].emission);
+    plan.path_traced = plan.emitting_spheres > 0 || plan.emitting_planes;
     plan.pinhole = scene.camera.type == camera_description::kind::pinhole;
     plan.bound = bound;
     plan.precision_forced = forced.has_value();
@@ -168,19 +171,23 @@ std::string scene_plan::describe_sampled() const {
     if (path_traced) {
         what = "path tracer (chapter 12)";
         kept.push_back(pixel + ", box filter");
-        if (sphere_lights)
-            kept.push_back("next-event estimation of " + std::to_string(sphere_lights) +
+        if (sphere_lights + emitting_spheres)
+            kept.push_back("next-event estimation of " + std::to_string(sphere_lights + emitting_spheres) +
                            " sphere lights (chapter 11's cone sample)");
         else
             left_out.push_back("light sampling (no sphere lights)");
+        if (emitting_planes) kept.push_back("emitting planes (met by bounces)");
         if (bounces)
             kept.push_back("cosine-weighted bounces, Russian roulette after 3, at most 24 vertices");
         else
             left_out.push_back("bounces (at most one diffuse object and a black background: no diffuse "
                                "interreflection, one vertex per path)");
         if (!lens.empty()) kept.push_back(lens); else left_out.push_back("the lens (aperture 0)");
-        left_out.push_back("point lights, ambient, highlights, checkers, mirrors and glass (chapter 12's surfaces are "
-                           "Lambertian and emit)");
+        if (lights > sphere_lights)
+            left_out.push_back(std::to_string(lights - sphere_lights) + " point lights (no area: no path meets one)");
+        if (triangles) left_out.push_back(std::to_string(triangles) + " triangles (chapter 12 draws spheres and planes)");
+        left_out.push_back("ambient, highlights, checkers, mirrors and glass (chapter 12's surfaces are Lambertian "
+                           "and emit)");
     } else if (secondary_rays()) {
         what = "sampled recursive trace (chapters 11 and 09)";
         kept.push_back(pixel + ", box filter, each sample chapter 09's trace (" + std::to_string(depth) + " bounces)");

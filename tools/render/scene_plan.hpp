@@ -52,7 +52,14 @@ struct scene_plan {
     std::uint64_t seed = 11;  // chapter 11's, so rt-render's picture of chapter 11's scene is the chapter's
     size_t sphere_lights = 0;
     double aperture = 0;
+    // Path traced: a scene whose shapes emit light (a material's "emission",
+    // chapter 12) is drawn by the path tracer, the only renderer that draws
+    // emission; rt-render --path asks for it for any scene. emitting_spheres
+    // and the sphere lights are what next-event estimation samples; an
+    // emitting plane is found by bounces only.
     bool path_traced = false;
+    size_t emitting_spheres = 0;
+    bool emitting_planes = false;
     // The path tracer: whether any path needs a second vertex. Not when light
     // can reach a diffuse surface only straight from a light (at most one
     // diffuse object, which is convex, and a black background): then every
