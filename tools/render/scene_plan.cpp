@@ -186,8 +186,9 @@ std::string scene_plan::describe_sampled() const {
         if (lights > sphere_lights)
             left_out.push_back(std::to_string(lights - sphere_lights) + " point lights (no area: no path meets one)");
         if (triangles) left_out.push_back(std::to_string(triangles) + " triangles (chapter 12 draws spheres and planes)");
-        left_out.push_back("ambient, highlights, checkers, mirrors and glass (chapter 12's surfaces are Lambertian "
-                           "and emit)");
+        if (glass) kept.push_back(std::to_string(glass) + " glass objects (chapter 09's optics, one ray of the two per path)");
+        left_out.push_back("ambient, highlights, checkers, mirrors (chapter 12's surfaces are matte or glass, and "
+                           "emit)");
     } else if (secondary_rays()) {
         what = "sampled recursive trace (chapters 11 and 09)";
         kept.push_back(pixel + ", box filter, each sample chapter 09's trace (" + std::to_string(depth) + " bounces)");
