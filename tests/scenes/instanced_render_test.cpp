@@ -3,6 +3,7 @@
 // same hits as the same scene built flat; an instance's box holds its
 // object; normals under a non-uniform scale stay perpendicular to the surface.
 #include "fast_path.hpp"
+#include "common/image_compare.hpp"
 #include "instanced_path.hpp"
 #include "scene_plan.hpp"
 
@@ -25,7 +26,10 @@ const std::string camera = R"("camera": {"eye": [2.1, 1.3, 1.7], "look_at": [0, 
 // scene's (instances expanded, the specialised path in double): hit or miss
 // alike, t to 1e-9 relative (each level's transform rounds the ray).
 void check_same_hits(const scene_description& d) {
-    const instanced_scene built(d);
+  // Every instance walked (0, the default), and placed objects of up to 8192 shapes stored expanded.
+  for (const std::uint64_t expand : {std::uint64_t(0), std::uint64_t(8192)}) {
+    CAPTURE(expand);
+    const instanced_scene built(d, expand);
     const scene_description flat = flattened(d);
     scene_plan plan = make_plan(flat, 1e-3, precision::double_);
     const primary_hits ref = trace_primary(flat, plan, d.camera.width, d.camera.height);
@@ -41,6 +45,7 @@ void check_same_hits(const scene_description& d) {
         }
     CHECK(different == 0);
     CHECK(hits > 100);  // the view sees the scene
+  }
 }
 
 }  // namespace
@@ -158,7 +163,10 @@ TEST_CASE("the flat sphereflake's sub-flakes are copies of the whole: flat and i
     scene_plan plan = make_plan(flat, 1e-3, precision::double_);
     plan.form = sphere_formulation::robust;
     const primary_hits ref = trace_primary(flat, plan, flat.camera.width, flat.camera.height);
-    const instanced_scene built(instanced);
+  // Every instance walked (0, the default), and the sub-flakes of up to 8,192 spheres stored expanded.
+  for (const std::uint64_t expand : {std::uint64_t(0), std::uint64_t(8192)}) {
+    CAPTURE(expand);
+    const instanced_scene built(instanced, expand);
     const scene_camera<double> cam(instanced.camera);
     long compared = 0, grazing = 0, wrong = 0, sphere_hits = 0;
     double worst_ratio = 0;
@@ -206,4 +214,26 @@ TEST_CASE("the flat sphereflake's sub-flakes are copies of the whole: flat and i
     CHECK(wrong == 0);
     CHECK(sphere_hits > 5000);                 // the flake fills much of the view
     CHECK(grazing < compared / 50);            // grazing hits are the silhouettes' few
+  }
+}
+
+TEST_CASE("a checkered ground under instances is drawn as on the flat path (the plane's own checker axes)") {
+    // z up, as the SPD scenes (the flake's ground, material 0, at z = -0.5):
+    // the checker's squares lie in x and y. With the
+    // default axes (x and z) the ground would show stripes.
+    const scene_description d = parse_scene(R"({"camera": {"eye": [2.1, 1.3, 1.7], "look_at": [0, 0, 0], "up": [0, 0, 1], "width": 64, "height": 48},
+        "materials": [{"diffuse": [0.75, 0.75, 0.7], "checker": [0.35, 0.35, 0.4]}, {"diffuse": [0.8, 0.55, 0.45]}],
+        "lights": [{"position": [4, 3, 2], "intensity": [30, 30, 28]}],
+        "generate": {"name": "balls", "size": 2, "instanced": true}})", "checker-ground.json");
+    const instanced_scene built(d);
+    render_stats stats;
+    const image by_instances = render_instanced(d, built, 64, 48, stats);
+    const scene_description flat = flattened(d);
+    const image flat_picture = render_fast(flat, make_plan(flat, 1e-3, precision::double_), 64, 48, stats);
+    // The usual tolerance (8/255 in 0.5% of the pixels): a silhouette pixel
+    // may go either way (the flat plan's plain sphere test against the
+    // robust one here); stripes instead of squares move a third of the ground.
+    const compare_result same = compare_images(by_instances, flat_picture, compare_tolerance{});
+    MESSAGE(same.summary(compare_tolerance{}));
+    CHECK(same.within(compare_tolerance{}));
 }

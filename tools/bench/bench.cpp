@@ -633,12 +633,13 @@ struct flake_figures {
 
 // The sphereflake by instancing at `level`: from nothing to a PNG (wall and
 // CPU time), then its render and its primary rays timed without the build.
-flake_figures instanced_flake_row(int level, int fsize) {
+flake_figures instanced_flake_row(int level, int fsize,
+                                  std::uint64_t expand_at_most = instanced_scene::default_expand_at_most) {
     const stopwatch wall;
     const double cpu0 = process_cpu_seconds();
     double generation = 0;
     const scene_description d = flake_scene(level, true, fsize, generation);
-    const instanced_scene built(d);
+    const instanced_scene built(d, expand_at_most);
     render_stats st;
     flake_figures f;
     f.picture = render_instanced(d, built, fsize, fsize, st);
@@ -649,10 +650,10 @@ flake_figures instanced_flake_row(int level, int fsize) {
     f.render_seconds = best_seconds([&] { render_instanced(d, built, fsize, fsize, st); }, 1);
     f.primary_seconds = best_seconds([&] { count_primary_hits_instanced(d, built, fsize, fsize); }, 1);
     const double px = double(fsize) * fsize;
-    std::printf("   level %2d by instancing: %llu spheres from %zu objects; start to PNG %.2f s wall (%.2f s CPU); tree "
+    std::printf("   level %2d by instancing (placed objects of up to %llu shapes stored expanded): %llu spheres from %zu objects; start to PNG %.2f s wall (%.2f s CPU); tree "
                 "%.3f MB, built in %.1f ms; render with shadows %.2f s, %ld rays, %.0f ns/ray; primary rays only %.0f "
                 "ns/ray; peak memory so far %.3f GB\n",
-                level, (unsigned long long)spd_expected_counts(spd_database::balls, level).spheres, d.objects.size(),
+                level, (unsigned long long)expand_at_most, (unsigned long long)spd_expected_counts(spd_database::balls, level).spheres, d.objects.size(),
                 start_to_png, start_to_png_cpu, double(built.bytes()) / 1e6, built.build_seconds() * 1e3,
                 f.render_seconds, f.rays, f.ns_per_ray(), f.primary_seconds / px * 1e9 * render_threads(), peak_rss_gb());
     std::fflush(stdout);
@@ -665,7 +666,7 @@ flake_figures instanced_flake_row(int level, int fsize) {
         // ground plane on the same rays.
         scene_description no_ground = d;
         no_ground.world.planes.clear();
-        const instanced_scene ours(no_ground);
+        const instanced_scene ours(no_ground, expand_at_most);
         long ours_hits = 0, hits1 = 0;
         const double ours_primary = best_seconds([&] { ours_hits = count_primary_hits_instanced(no_ground, ours, fsize, fsize); }, 1);
         const embree_instanced_scene e(d, level / 2);
@@ -696,6 +697,11 @@ void big_scenes(int size, bool flake, bool mesh_too) {
                 "in one tree)\n");
     std::printf("   (ns/ray: time per ray on one thread, CPU time; render: primary and shadow rays with shading)\n");
     instanced_flake_row(10, fsize);
+    // Level 8 with its level-4 and level-6 sub-flakes (7,381 and 597,871
+    // spheres) stored expanded in their own space, then with every instance
+    // walked (the default).
+    instanced_flake_row(8, fsize, 8192);
+    instanced_flake_row(8, fsize, 600000);
     const flake_figures by_instances = instanced_flake_row(8, fsize);
     if (!flake) return;
     const scene_description d = flake_scene(8, false, fsize, generation);

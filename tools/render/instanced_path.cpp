@@ -65,6 +65,7 @@ struct level_object {
     std::vector<bvh_box> child_boxes;  // in this object's space, as the tree holds them
     bvh_tree tree;
     box3 bounds;  // of everything in it, in its own space (empty: nothing to hit)
+    bool expanded = false;  // its instances expanded into its own shapes (expand_at_most)
     size_t bytes() const {
         return tree.bytes() + spheres.size() * sizeof(sphere_item) + triangles.size() * sizeof(triangle_item) +
                children.size() * sizeof(child_item);
@@ -78,6 +79,8 @@ struct instanced_scene_data {
     double build_seconds = 0;
     expanded_counts expanded;
     size_t stored_spheres = 0, stored_triangles = 0, placements = 0;
+    size_t expanded_objects = 0;  // placed objects stored expanded in their own space
+    std::uint64_t expand_at_most = 0;
 };
 
 namespace {
@@ -127,13 +130,34 @@ triangle_item triangle_of(const triangle<double>& x) {
     return t;
 }
 
-// Builds object o's level (its children first), once.
-void build_level(const std::vector<object_definition>& defs, int o, const object_definition& def,
-                 std::vector<level_object>& levels, std::vector<bool>& built) {
+void flatten_into(const std::vector<object_definition>& defs, const object_definition& def,
+                  const affine_transform& to_world, scene<double>& out);
+
+// Builds object o's level (its children first), once. A placed object
+// that expands to at most expand_at_most spheres and triangles is stored
+// expanded, in its own space, in one tree (see instanced_scene's
+// constructor); its spheres must be placed by similarities inside it (else
+// it stays instanced). The top level never is.
+void build_level(const std::vector<object_definition>& defs, const std::vector<expanded_counts>& counts, int o, int top,
+                 std::uint64_t expand_at_most, const object_definition& given, std::vector<level_object>& levels,
+                 std::vector<bool>& built) {
     if (built[size_t(o)]) return;
     level_object& level = levels[size_t(o)];
+    object_definition expanded;
+    const bool small = o != top && !given.instances.empty() &&
+                       counts[size_t(o)].spheres + counts[size_t(o)].triangles <= expand_at_most;
+    if (small) {
+        scene<double> shapes;
+        try {
+            flatten_into(defs, given, affine_transform{}, shapes);
+            expanded.spheres = std::move(shapes.spheres);
+            expanded.triangles = std::move(shapes.triangles);
+            level.expanded = true;
+        } catch (const std::invalid_argument&) {  // an ellipsoid inside: keep the instances
+        }
+    }
+    const object_definition& def = level.expanded ? expanded : given;
     std::vector<bvh_box> boxes;
-    std::vector<std::uint32_t> items;  // item numbers of the boxes (empty children are left out)
     for (const auto& s : def.spheres) {
         level.spheres.push_back({s.center, s.radius, s.radius * s.radius, s.material});
         box3 b;
@@ -150,7 +174,7 @@ void build_level(const std::vector<object_definition>& defs, int o, const object
         boxes.push_back(to_float_box(b));
     }
     for (const auto& i : def.instances) {
-        build_level(defs, i.object, defs[size_t(i.object)], levels, built);
+        build_level(defs, counts, i.object, top, expand_at_most, defs[size_t(i.object)], levels, built);
         const level_object& placed = levels[size_t(i.object)];
         if (placed.bounds.empty()) continue;  // nothing to hit in it
         const box3 b = of(to_float_box(placed_box(placed.bounds, i.to_parent)));
@@ -228,14 +252,16 @@ struct slab_ray {
     slab_ray(const vec3d& origin, const vec3d& d) : o(origin) {
         for (int a = 0; a < 3; ++a) inv[a] = d[a] == 0 ? std::copysign(1e300, d[a]) : 1 / d[a];
     }
-    bool enters(const bvh_box& b, double tmin, double tmax) const {
+    // Where the ray enters the box within (tmin, tmax), or infinity when it
+    // does not meet it there.
+    double entry(const bvh_box& b, double tmin, double tmax) const {
         double enter = tmin, leave = tmax;
         for (int a = 0; a < 3; ++a) {
             const double t0 = (double(b.lo[a]) - o[a]) * inv[a], t1 = (double(b.hi[a]) - o[a]) * inv[a];
             enter = std::max(enter, std::min(t0, t1));
             leave = std::min(leave, std::max(t0, t1) * (1 + 8 * std::numeric_limits<double>::epsilon()));
         }
-        return enter <= leave;
+        return enter <= leave ? enter : infinity<double>;
     }
 };
 
@@ -245,11 +271,23 @@ struct local_hit {
     vec3d normal{0};  // not normalised: in the space of the object the walk is in
 };
 
+// A node or an instance waiting to be visited, with where the ray enters its box.
+struct waiting {
+    std::uint32_t index;
+    double entry;
+};
+
 class walker {
 public:
     explicit walker(const instanced_scene_data& d) : d_(d) {}
 
-    // The closest hit in object o with tmin < t < best.t; true when best was improved.
+    // The closest hit in object o with tmin < t < best.t; true when best was
+    // improved. Near first: of a node's two children the one the ray enters
+    // first is visited first, and so are the instances of a leaf, so that
+    // best.t shrinks early and the farther boxes (a sub-flake behind a
+    // nearer one) are skipped without moving the ray into their space. An
+    // instance's box (in this object's space, widened) is tested before the
+    // ray is moved into its space: most of a leaf's instances are missed.
     bool closest(int o, const vec3d& org, const vec3d& dir, double tmin, local_hit& best) const {
         const level_object& level = d_.objects[size_t(o)];
         if (level.tree.nodes.empty()) return false;
@@ -257,17 +295,26 @@ public:
         const double a = dot(dir, dir), d_max = direction_max(dir.x, dir.y, dir.z);
         const size_t spheres = level.spheres.size(), triangles = level.triangles.size();
         bool found = false;
-        std::uint32_t stack[128];
+        waiting stack[128];
         int top = 0;
-        stack[top++] = 0;
+        const double root = slabs.entry(level.tree.nodes[0].box, tmin, best.t);
+        if (root < best.t) stack[top++] = {0, root};
         while (top > 0) {
-            const bvh_node& n = level.tree.nodes[stack[--top]];
-            if (!slabs.enters(n.box, tmin, best.t)) continue;
+            const waiting w = stack[--top];
+            if (!(w.entry < best.t)) continue;  // best.t shrank since it was pushed
+            const bvh_node& n = level.tree.nodes[w.index];
             if (n.count == 0) {
-                stack[top++] = n.first + 1;
-                stack[top++] = n.first;
+                const double left = slabs.entry(level.tree.nodes[n.first].box, tmin, best.t);
+                const double right = slabs.entry(level.tree.nodes[n.first + 1].box, tmin, best.t);
+                const waiting l{n.first, left}, r{n.first + 1, right};
+                const waiting& near = left <= right ? l : r;
+                const waiting& far = left <= right ? r : l;
+                if (far.entry < best.t) stack[top++] = far;
+                if (near.entry < best.t) stack[top++] = near;
                 continue;
             }
+            waiting placed[16];  // the leaf's instances the ray enters (a leaf holds at most 8 items)
+            int placed_count = 0;
             for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
                 const size_t item = level.tree.order[k];
                 if (item < spheres) {
@@ -286,22 +333,34 @@ public:
                         found = true;
                     }
                 } else {
-                    // Into the placed object's space: the direction is not
-                    // normalised, so t (and best.t, the range's end) mean
-                    // the same point there.
-                    const child_item& c = level.children[item - spheres - triangles];
-                    local_hit inside = best;
-                    if (closest(c.object, c.from_linear * org + c.from_offset, c.from_linear * dir, tmin, inside)) {
-                        best = {inside.t, inside.material, c.normal_matrix * inside.normal};
-                        found = true;
+                    const std::uint32_t c = std::uint32_t(item - spheres - triangles);
+                    const double entry = slabs.entry(level.child_boxes[c], tmin, best.t);
+                    if (entry < best.t) {
+                        // Insertion by entry: a leaf holds a handful of items.
+                        int at = placed_count++;
+                        for (; at > 0 && placed[at - 1].entry > entry; --at) placed[at] = placed[at - 1];
+                        placed[at] = {c, entry};
                     }
+                }
+            }
+            for (int k = 0; k < placed_count; ++k) {
+                if (!(placed[k].entry < best.t)) break;  // this one and the rest lie beyond the closest hit
+                // Into the placed object's space: the direction is not
+                // normalised, so t (and best.t, the range's end) mean
+                // the same point there.
+                const child_item& c = level.children[placed[k].index];
+                local_hit inside = best;
+                if (closest(c.object, c.from_linear * org + c.from_offset, c.from_linear * dir, tmin, inside)) {
+                    best = {inside.t, inside.material, c.normal_matrix * inside.normal};
+                    found = true;
                 }
             }
         }
         return found;
     }
 
-    // Is anything in object o hit with tmin < t < tmax?
+    // Is anything in object o hit with tmin < t < tmax? (Any order will do;
+    // instances whose box the ray misses are not entered.)
     bool blocked(int o, const vec3d& org, const vec3d& dir, double tmin, double tmax) const {
         const level_object& level = d_.objects[size_t(o)];
         if (level.tree.nodes.empty()) return false;
@@ -313,7 +372,7 @@ public:
         stack[top++] = 0;
         while (top > 0) {
             const bvh_node& n = level.tree.nodes[stack[--top]];
-            if (!slabs.enters(n.box, tmin, tmax)) continue;
+            if (!(slabs.entry(n.box, tmin, tmax) < tmax)) continue;
             if (n.count == 0) {
                 stack[top++] = n.first + 1;
                 stack[top++] = n.first;
@@ -326,7 +385,9 @@ public:
                 } else if (item < spheres + triangles) {
                     if (triangle_hit_t(level.triangles[item - spheres], org, dir, d_max, tmin) < tmax) return true;
                 } else {
-                    const child_item& c = level.children[item - spheres - triangles];
+                    const size_t ci = item - spheres - triangles;
+                    if (!(slabs.entry(level.child_boxes[ci], tmin, tmax) < tmax)) continue;
+                    const child_item& c = level.children[ci];
                     if (blocked(c.object, c.from_linear * org + c.from_offset, c.from_linear * dir, tmin, tmax))
                         return true;
                 }
@@ -341,7 +402,8 @@ private:
 
 }  // namespace
 
-instanced_scene::instanced_scene(const scene_description& scene) : data_(std::make_unique<instanced_scene_data>()) {
+instanced_scene::instanced_scene(const scene_description& scene, std::uint64_t expand_at_most)
+    : data_(std::make_unique<instanced_scene_data>()) {
     const stopwatch clock;
     instanced_scene_data& d = *data_;
     // The top level is one more object: the world's spheres and triangles and its instances.
@@ -355,10 +417,10 @@ instanced_scene::instanced_scene(const scene_description& scene) : data_(std::ma
     d.top = int(defs.size()) - 1;
     d.objects.resize(defs.size());
     std::vector<bool> built(defs.size(), false);
-    build_level(defs, d.top, defs[size_t(d.top)], d.objects, built);
+    const std::vector<expanded_counts> counts = expanded_counts_of(defs);
+    build_level(defs, counts, d.top, d.top, expand_at_most, defs[size_t(d.top)], d.objects, built);
     for (const auto& p : scene.world.planes)
         d.planes.push_back({p.point, normalize(p.normal), p.normal, p.material});
-    const std::vector<expanded_counts> counts = expanded_counts_of(defs);
     hoist_planes(defs, counts, object_definition{"", {}, {}, {}, scene.instances}, affine_transform{}, d.planes);
     d.expanded = counts[size_t(d.top)];
     d.expanded.planes = scene.world.planes.size() + (d.planes.size() - scene.world.planes.size());
@@ -367,7 +429,9 @@ instanced_scene::instanced_scene(const scene_description& scene) : data_(std::ma
         d.stored_spheres += d.objects[o].spheres.size();
         d.stored_triangles += d.objects[o].triangles.size();
         d.placements += d.objects[o].children.size();
+        d.expanded_objects += d.objects[o].expanded;
     }
+    d.expand_at_most = expand_at_most;
     d.build_seconds = clock.seconds();
 }
 
@@ -393,15 +457,16 @@ std::string instanced_scene::describe() const {
     const instanced_scene_data& d = *data_;
     size_t used = 0;
     for (const auto& o : d.objects) used += !o.tree.nodes.empty();
-    char line[600];
+    char line[800];
     std::snprintf(line, sizeof line,
                   "two-level tree (instances): %zu objects, each with its own tree, %zu instances in them (instances of "
                   "instances); expanded: %llu spheres, %llu triangles, %llu planes; stored: %zu spheres, %zu "
-                  "triangles; %.3f MB of trees and shapes, built in %.1f ms; double, robust sphere test, rays moved "
-                  "into each instance's space",
+                  "triangles (%zu placed objects of at most %llu shapes stored expanded in their own space); %.3f MB "
+                  "of trees and shapes, built in %.1f ms; double, robust sphere test, rays moved into each "
+                  "instance's space, nearest instance first",
                   used, d.placements, (unsigned long long)d.expanded.spheres, (unsigned long long)d.expanded.triangles,
-                  (unsigned long long)d.expanded.planes, d.stored_spheres, d.stored_triangles, double(bytes()) / 1e6,
-                  d.build_seconds * 1e3);
+                  (unsigned long long)d.expanded.planes, d.stored_spheres, d.stored_triangles, d.expanded_objects,
+                  (unsigned long long)d.expand_at_most, double(bytes()) / 1e6, d.build_seconds * 1e3);
     return line;
 }
 
@@ -409,12 +474,17 @@ instanced_scene::hit instanced_scene::closest(const ray<double>& r, double tmin,
     const instanced_scene_data& d = *data_;
     local_hit best{tmax};
     walker(d).closest(d.top, r.origin, r.direction, tmin, best);
+    const plane_item* plane = nullptr;
     for (const auto& p : d.planes) {
         const double t = plane_hit_t(p, r.origin, r.direction, tmin);
-        if (t < best.t) best = {t, p.material, dot(p.unit_normal, r.direction) > 0 ? -p.unit_normal : p.unit_normal};
+        if (t < best.t) {
+            best = {t, p.material, dot(p.unit_normal, r.direction) > 0 ? -p.unit_normal : p.unit_normal};
+            plane = &p;
+        }
     }
     hit h;
     if (best.material < 0) return h;
+    if (plane) h.plane_normal = plane->normal;  // the planes come last: the closest hit is this plane's
     h.t = best.t;
     h.material = best.material;
     h.normal = normalize(best.normal);
@@ -450,7 +520,11 @@ image render_instanced(const scene_description& description, const instanced_sce
                 continue;
             }
             const vec3d point = r.origin + h.t * r.direction;
-            const material m = material_at(world.materials[size_t(h.material)], point);
+            // A plane's checker follows the plane's own axes, as on the flat path (common/scene.hpp).
+            const material& given = world.materials[size_t(h.material)];
+            const material m = given.checker && h.plane_normal != vec3d(0)
+                                   ? material_at(given, point, checker_axes_of(h.plane_normal))
+                                   : material_at(given, point);
             const vec3d n = facing_normal(h.normal, r.direction);  // the side the viewer sees (common/hit_record.hpp)
             out = world.lights.empty() ? unlit_colour(m, n, r.direction)
                                        : ch06::shade(point, n, -r.direction, m, world.lights, world.ambient, occluded);

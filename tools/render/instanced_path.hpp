@@ -14,6 +14,12 @@
 // step again, one level down: the level-10 sphereflake is eleven small
 // trees, not four billion spheres.
 //
+// The walk visits the nearer of two boxes first, a leaf's instances in the
+// order the ray enters their boxes, and skips what lies beyond the closest
+// hit so far; an instance's box is tested before the ray is moved into its
+// space. A placed object small enough when expanded (expand_at_most, off
+// by default) can be stored expanded in its own space, one tree for it.
+//
 // Planes (unbounded, so in no tree) inside placed objects are moved out to
 // the top level once, for each way they are placed.
 #pragma once
@@ -35,7 +41,17 @@ struct instanced_scene_data;  // the trees (instanced_path.cpp)
 // The scene's two-level tree, built once.
 class instanced_scene {
 public:
-    explicit instanced_scene(const scene_description& scene);
+    // expand_at_most: a placed object that expands to at most this many
+    // spheres and triangles is stored expanded, in its own space, in one
+    // tree, so a ray pays one transform for it instead of one per level of
+    // instances inside it. 0 (the default) keeps every instance: on the
+    // level-8 sphereflake, expanding its level-4 sub-flakes (8192) or its
+    // level-6 ones (600000) gave no clear gain: render with shadows 938 and
+    // 1242 ns per ray against 884, primary rays 932 and 1182 against 1080
+    // (one run under load, rt-bench section 6, tools/bench/README.md). The
+    // tests use both.
+    static constexpr std::uint64_t default_expand_at_most = 0;
+    explicit instanced_scene(const scene_description& scene, std::uint64_t expand_at_most = default_expand_at_most);
     ~instanced_scene();
     instanced_scene(instanced_scene&&) noexcept;
 
@@ -51,6 +67,7 @@ public:
         double t = 0;
         int material = -1;  // -1: a miss
         vec3d normal{0};
+        vec3d plane_normal{0};  // a plane's normal as the scene gives it (its checker's axes), 0 for other shapes
     };
     hit closest(const ray<double>& r, double tmin, double tmax) const;
     bool blocked(const ray<double>& r, double tmin, double tmax) const;
