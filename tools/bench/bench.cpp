@@ -776,7 +776,7 @@ void samples_row(const char* name, const scene_description& d, bool path_traced,
             samples = st.samples;
         },
         runs);
-    std::printf("   %-40s | %7dx%-5d | %10ld | %9.0f | %11.3f | %s\n", name, size, size, samples, seconds * 1e3,
+    std::printf("   %-50s | %7dx%-5d | %10ld | %9.0f | %11.3f | %s\n", name, size, size, samples, seconds * 1e3,
                 double(samples) / seconds / 1e6, renderer_name(plan));
     std::fflush(stdout);
 }
@@ -784,7 +784,7 @@ void samples_row(const char* name, const scene_description& d, bool path_traced,
 void samples_table(int size, bool quick) {
     constexpr int spp = 16;
     std::printf("\n8. samples per second, %d samples per pixel (stratified, one PCG32 stream per pixel)\n", spp);
-    std::printf("   %-40s | %13s | %10s | %9s | %11s | %s\n", "scene", "image", "samples", "ms", "Msamples/s",
+    std::printf("   %-50s | %13s | %10s | %9s | %11s | %s\n", "scene", "image", "samples", "ms", "Msamples/s",
                 "renderer");
     const char* box_file = RT_SCENES_DIR "/ch12-cornell-box.json";
     if (std::ifstream(box_file).good())
