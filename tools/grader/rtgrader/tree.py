@@ -239,7 +239,8 @@ class Tree:
     def _configure(self):
         cmd = ["cmake", "-S", self.source, "-B", self.build, "-G", "Ninja",
                "-DCMAKE_BUILD_TYPE=RelWithDebInfo", "-DRT_WARNINGS_AS_ERRORS=OFF", "-DRT_SANITIZE=OFF",
-               "-DRT_STUDENT_CHAPTERS=all", "-DRT_DISCOVER_TESTS=OFF", "-DRT_JUDGE=ON"]
+               "-DRT_STUDENT_CHAPTERS=all", "-DRT_DISCOVER_TESTS=OFF", "-DRT_JUDGE=ON",
+               "-DRT_OPTIMISE_TEST_FILES=ON"]
         cmd.append("-DRT_DEPENDENCIES_FROM_SOLUTIONS=" + ("ON" if self.has_solutions else "OFF"))
         result = subprocess.run(cmd, capture_output=True, text=True)
         if result.returncode != 0:
