@@ -24,6 +24,7 @@ import shutil
 import struct
 import subprocess
 import sys
+import tempfile
 import zlib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools", "grader"))
@@ -154,13 +155,18 @@ def chromium():
     return None
 
 
-def run_chromium(args, profile, timeout=120):
-    """Chromium headless with a new empty profile; returns its stdout."""
-    shutil.rmtree(profile, ignore_errors=True)
-    os.makedirs(profile)
-    result = subprocess.run([chromium(), *CHROMIUM_FLAGS, f"--user-data-dir={profile}", *args],
-                            capture_output=True, text=True, timeout=timeout)
-    return result.stdout
+def run_chromium(args, work, timeout=120):
+    """Chromium headless with a new empty profile of its own; returns (stdout, stderr, exit status).
+    Each run gets its own profile folder: the page tests run in parallel (ctest -j) in one work folder,
+    and a profile shared between two Chromiums, or deleted under one, fails the other one at random."""
+    os.makedirs(work, exist_ok=True)
+    profile = tempfile.mkdtemp(prefix="chromium-profile-", dir=work)
+    try:
+        result = subprocess.run([chromium(), *CHROMIUM_FLAGS, f"--user-data-dir={profile}", *args],
+                                capture_output=True, text=True, timeout=timeout)
+    finally:
+        shutil.rmtree(profile, ignore_errors=True)
+    return result.stdout, result.stderr, result.returncode
 
 
 def look_at(page, work):
@@ -175,16 +181,21 @@ def look_at(page, work):
     copy = os.path.join(os.path.dirname(page), "checked-" + os.path.basename(page))
     with open(copy, "w", encoding="utf-8") as f:
         f.write(text)
-    dom = run_chromium(["--virtual-time-budget=5000", "--dump-dom", "file://" + copy], os.path.join(work, "profile"))
+    dom, errors, status = run_chromium(["--virtual-time-budget=5000", "--dump-dom", "file://" + copy], work)
     m = re.search(r'<pre id="rt-check">(.*?)</pre>', dom, re.S)
     if not m:
-        raise AssertionError(f"Chromium showed no check results for {page}:\n{dom[-2000:]}")
+        raise AssertionError(f"Chromium (exit {status}) showed no check results for {page}:\n{dom[-2000:]}\n"
+                             f"Chromium's messages:\n{errors[-2000:]}")
     import html as html_
     return json.loads(html_.unescape(m.group(1)))
 
 
 def screenshot(page, path, work):
-    run_chromium([f"--screenshot={path}", "file://" + page], os.path.join(work, "profile"))
+    if os.path.exists(path):
+        os.remove(path)     # so a screenshot of an earlier run cannot stand in for this one
+    _, errors, status = run_chromium([f"--screenshot={path}", "file://" + page], work)
+    if not os.path.isfile(path):
+        raise AssertionError(f"Chromium (exit {status}) wrote no screenshot {path} of {page}:\n{errors[-2000:]}")
     return path
 
 

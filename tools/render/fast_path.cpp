@@ -46,6 +46,7 @@
 #include "common/scene.hpp"   // material_at: the checker pattern
 #include "06-shading/shading.hpp"   // chapter 06's shade(), for lit scenes
 #include "11-sampling/sampling.hpp"  // chapter 11's stratified_sample and thin_lens_ray, for --spp N
+#include "09-reflection/surface_error.hpp"  // hit points put back on their surfaces, for shading
 
 #include "common/render.hpp"
 #include "fast_path_kernels.hpp"  // the plane and triangle kernels
@@ -180,6 +181,29 @@ struct context {
             closest_hits<T, SM, Planes, Tris, false>(soa, p, tmin, t, object);
     }
 
+    // The hit point of object o put back on o's surface, for shading. The
+    // point origin + t d carries the rounding of t: seen from 4100 units
+    // away (scenes/far-sphere.json) it is off the surface by about
+    // 4100 eps, while chapter 06's shadow ray leaves by 128 eps of the
+    // point's own coordinates (here 1), so it starts below the surface and
+    // hits it: shadow acne, in every sphere formulation. Reprojected
+    // (chapter 09's given surface_error.hpp, pbrt-v4's idea) the point is
+    // off only by the rounding of the shape's own numbers, which the offset
+    // covers. A plane goes through its unit normal (soa_scene::unit_normal),
+    // which a normal of any length gives without underflow.
+    vec3<T> surface_point(size_t o, const vec3<T>& point) const {
+        if (o < soa.sphere_count) {
+            const sphere<double>& x = world.spheres[o];
+            return ch09::on_sphere(sphere<T>{convert<T>(x.center), T(x.radius)}, point).point;
+        }
+        if (o < soa.sphere_count + soa.plane_count) {
+            const plane<double>& x = world.planes[o - soa.sphere_count];
+            return ch09::on_plane_through(convert<T>(x.point), convert<T>(soa_scene<T>::unit_normal(x)), point).point;
+        }
+        const triangle<double>& x = world.triangles[o - soa.sphere_count - soa.plane_count];
+        return ch09::on_triangle(triangle<T>{convert<T>(x.a), convert<T>(x.b), convert<T>(x.c)}, point).point;
+    }
+
     // Unit outward normal at a hit point of object o (the scene's number), as
     // the chapters' exercises report it: from the scene's shapes rounded to T,
     // as soa_scene stores them.
@@ -231,7 +255,7 @@ image render_with(const scene_description& d, int width, int height, bool tree, 
         auto shade_lane = [&](int k) -> color {
             if (object[k] < 0) return d.world.background;
             const vec3<T> origin(p.ox[k], p.oy[k], p.oz[k]), direction(p.dx[k], p.dy[k], p.dz[k]);
-            const vec3<T> point = origin + t[k] * direction;
+            const vec3<T> point = ctx.surface_point(size_t(object[k]), origin + t[k] * direction);
             // The side the viewer sees, by the chapters' one face rule (common/hit_record.hpp).
             const vec3<T> n = facing_normal(ctx.outward_normal(size_t(object[k]), point), direction);
             const material m = ctx.material_at_hit(size_t(object[k]), point);

@@ -7,6 +7,7 @@
 #include "06-shading/shading.hpp"
 #include "08-acceleration/scene_tree.hpp"
 #include "08-acceleration/tree_heatmap.hpp"
+#include "09-reflection/whitted.hpp"  // surface_point_of: a hit point put back on its surface
 #include "02-sphere/sphere.hpp"
 #include "05-triangle/triangle.hpp"
 
@@ -53,7 +54,10 @@ image render_typed(const scene_description& d, bool use_tree, int width, int hei
         const material m = material_at(world, *hit);
         const vec3<T> n = hit->facing_normal(r);  // the side the viewer sees, as the chapters shade it
         if (world.lights.empty()) return unlit_colour(m, n, r.direction);
-        return ch06::shade(hit->point, n, -r.direction, m, world.lights, world.ambient, occluded);
+        // Shaded from the point put back on its surface, as the specialised
+        // path does (fast_path.cpp, surface_point: why a far eye needs it).
+        return ch06::shade(ch09::surface_point_of(world, *hit).point, n, -r.direction, m, world.lights, world.ambient,
+                           occluded);
     });
     stats.rays = long(width) * long(height) + shadow_rays.load();
     return img;
