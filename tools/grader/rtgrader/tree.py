@@ -240,7 +240,10 @@ class Tree:
         cmd = ["cmake", "-S", self.source, "-B", self.build, "-G", "Ninja",
                "-DCMAKE_BUILD_TYPE=RelWithDebInfo", "-DRT_WARNINGS_AS_ERRORS=OFF", "-DRT_SANITIZE=OFF",
                "-DRT_STUDENT_CHAPTERS=all", "-DRT_DISCOVER_TESTS=OFF", "-DRT_JUDGE=ON",
-               "-DRT_OPTIMISE_TEST_FILES=ON"]
+               # The tests' own files optimised where the hidden tests run (the instructor's tree:
+               # there the judges' time is the student's wait); a kit's preview runs the public
+               # tests only, which take seconds unoptimised, and compiles them in about half the time.
+               "-DRT_OPTIMISE_TEST_FILES=" + ("OFF" if self.is_kit else "ON")]
         cmd.append("-DRT_DEPENDENCIES_FROM_SOLUTIONS=" + ("ON" if self.has_solutions else "OFF"))
         result = subprocess.run(cmd, capture_output=True, text=True)
         if result.returncode != 0:
