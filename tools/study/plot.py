@@ -20,6 +20,8 @@ import csv
 import os
 import sys
 
+from plotting import pyplot
+
 FLOOR, CEILING = 1e-17, 1.0
 MARKERS = "osD^v<>ph*X"
 
@@ -30,15 +32,9 @@ def main():
     parser.add_argument("csv", nargs="?", default=os.path.join(here, "results", "study.csv"))
     parser.add_argument("--out", default=os.path.join(here, "results"))
     args = parser.parse_args()
-    try:
-        import matplotlib
-        matplotlib.use("svg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print("plot.py: matplotlib is not installed (Debian: python3-matplotlib); no diagrams drawn")
+    plt = pyplot("plot.py", "work-precision", "no diagrams drawn")
+    if plt is None:
         return 0
-    matplotlib.rcParams["svg.hashsalt"] = "work-precision"  # the same file on every run
-    matplotlib.rcParams["svg.fonttype"] = "none"
 
     with open(args.csv, newline="") as f:
         rows = [r for r in csv.DictReader(f) if not r["family"].startswith("plane")]
