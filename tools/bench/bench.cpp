@@ -164,6 +164,30 @@ render_figures time_general(const scene_description& d, int size, int repeat) {
 }
 
 #ifdef RT_HAVE_EMBREE
+// Primary hits over the image in an Embree scene, one rtcIntersect1 per ray,
+// on every core: the single() of both Embree scenes below.
+long embree_single(RTCScene scene, const pinhole_camera<float>& cam) {
+    std::atomic<long> hits{0};
+    for_each_row(cam.height, [&](int row) {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        long h = 0;
+        for (int col = 0; col < cam.width; ++col) {
+            const ray<float> r = cam.primary_ray(col, row);
+            RTCRayHit rh;
+            rh.ray.org_x = r.origin.x, rh.ray.org_y = r.origin.y, rh.ray.org_z = r.origin.z;
+            rh.ray.dir_x = r.direction.x, rh.ray.dir_y = r.direction.y, rh.ray.dir_z = r.direction.z;
+            rh.ray.tnear = 1.0f, rh.ray.tfar = infinity<float>, rh.ray.time = 0, rh.ray.mask = ~0u;
+            rh.ray.id = 0, rh.ray.flags = 0;
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(scene, &context, &rh);
+            h += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+        }
+        hits += h;
+    });
+    return hits.load();
+}
+
 // The same spheres in Embree: its point-sphere geometry (RTC_GEOMETRY_TYPE_SPHERE_POINT)
 // in a BVH built at high quality. Rays are the pinhole camera's primary rays
 // in float, with tnear = 1 (the image plane) like the course's.
@@ -224,27 +248,7 @@ public:
     }
 
     // Hits over the whole image with one rtcIntersect1 per ray.
-    long single(const pinhole_camera<float>& cam) const {
-        std::atomic<long> hits{0};
-        rows(cam.height, [&](int row) {
-            RTCIntersectContext context;
-            rtcInitIntersectContext(&context);
-            long h = 0;
-            for (int col = 0; col < cam.width; ++col) {
-                const ray<float> r = cam.primary_ray(col, row);
-                RTCRayHit rh;
-                rh.ray.org_x = r.origin.x, rh.ray.org_y = r.origin.y, rh.ray.org_z = r.origin.z;
-                rh.ray.dir_x = r.direction.x, rh.ray.dir_y = r.direction.y, rh.ray.dir_z = r.direction.z;
-                rh.ray.tnear = 1.0f, rh.ray.tfar = infinity<float>, rh.ray.time = 0, rh.ray.mask = ~0u;
-                rh.ray.id = 0, rh.ray.flags = 0;
-                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-                rtcIntersect1(scene_, &context, &rh);
-                h += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-            }
-            hits += h;
-        });
-        return hits.load();
-    }
+    long single(const pinhole_camera<float>& cam) const { return embree_single(scene_, cam); }
 
     // Hits over the whole image with one rtcIntersect16 per 4x4 block of pixels
     // (rows are handed out four at a time).
@@ -521,27 +525,7 @@ public:
     embree_instanced_scene& operator=(const embree_instanced_scene&) = delete;
 
     // Primary hits over the image, one rtcIntersect1 per ray, on every core.
-    long single(const pinhole_camera<float>& cam) const {
-        std::atomic<long> hits{0};
-        for_each_row(cam.height, [&](int row) {
-            RTCIntersectContext context;
-            rtcInitIntersectContext(&context);
-            long h = 0;
-            for (int col = 0; col < cam.width; ++col) {
-                const ray<float> r = cam.primary_ray(col, row);
-                RTCRayHit rh;
-                rh.ray.org_x = r.origin.x, rh.ray.org_y = r.origin.y, rh.ray.org_z = r.origin.z;
-                rh.ray.dir_x = r.direction.x, rh.ray.dir_y = r.direction.y, rh.ray.dir_z = r.direction.z;
-                rh.ray.tnear = 1.0f, rh.ray.tfar = infinity<float>, rh.ray.time = 0, rh.ray.mask = ~0u;
-                rh.ray.id = 0, rh.ray.flags = 0;
-                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-                rtcIntersect1(top_, &context, &rh);
-                h += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-            }
-            hits += h;
-        });
-        return hits.load();
-    }
+    long single(const pinhole_camera<float>& cam) const { return embree_single(top_, cam); }
 
     double build_seconds = 0;
     size_t top_spheres = 0, instances = 0, shared_spheres = 0;
