@@ -44,7 +44,6 @@
 #include <fstream>
 #include <functional>
 #include <random>
-#include <thread>
 #include <vector>
 
 #include <memory>
@@ -254,7 +253,7 @@ public:
     // (rows are handed out four at a time).
     long packets16(const pinhole_camera<float>& cam) const {
         std::atomic<long> hits{0};
-        rows((cam.height + 3) / 4, [&](int block_row) {
+        for_each_row((cam.height + 3) / 4, [&](int block_row) {
             RTCIntersectContext context;
             rtcInitIntersectContext(&context);
             context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -285,18 +284,6 @@ public:
 private:
     RTCDevice device_;
     RTCScene scene_;
-
-    // body(i) for i in [0, count) on every core, like the renderer's loop.
-    static void rows(int count, const std::function<void(int)>& body) {
-        std::atomic<int> next{0};
-        auto worker = [&] {
-            for (int i; (i = next.fetch_add(1)) < count;) body(i);
-        };
-        std::vector<std::thread> pool;
-        for (int i = 1; i < render_threads(); ++i) pool.emplace_back(worker);
-        worker();
-        for (auto& t : pool) t.join();
-    }
 };
 #endif
 
