@@ -39,6 +39,36 @@ double hemisphere_integral(const vec3<T>& n, F f) {
     return sum;
 }
 
+// A furnace of radiance 2 along r by bouncing alone (no light samples), with uniform and cosine
+// bounces and roulette from the first and the third vertex on: every setting must give 2. The
+// paths are the sequence's from `first` on; the messages say what a failure means.
+template <class T>
+void check_furnace_by_bouncing(const path_scene<T>& furnace, const ray<T>& r, long first, const char* finite_why,
+                               const char* why) {
+    for (bool cosine : {true, false})
+        for (int roulette : {0, 2}) {
+            path_settings how;
+            how.next_event = false;
+            how.cosine_sampling = cosine;
+            how.roulette_after = roulette;
+            const estimate e = path_estimate(furnace, r, how, 1000, 48, first);
+            CHECK_MESSAGE(e.finite, finite_why);
+            CHECK_MESSAGE(std::fabs(e.mean - 2.0) <= 5 * e.standard_error + 2e-4, why);
+        }
+}
+
+// The same furnace, now with a light of radiance 2 in it, along r with light samples (the default
+// settings) and uniform and cosine bounces: every setting must still give 2.
+template <class T>
+void check_furnace_with_light_samples(const path_scene<T>& furnace, const ray<T>& r, long first, const char* why) {
+    for (bool cosine : {true, false}) {
+        path_settings how;
+        how.cosine_sampling = cosine;
+        const estimate e = path_estimate(furnace, r, how, 1200, 48, first);
+        CHECK_MESSAGE(std::fabs(e.mean - 2.0) <= 5 * e.standard_error + 2e-4, why);
+    }
+}
+
 }  // namespace
 
 TEST_CASE_TEMPLATE("hidden: the cosine density integrates to one", T, RT_SCALARS) {
@@ -132,47 +162,21 @@ TEST_CASE_TEMPLATE("hidden: roulette leaves the expectation unchanged", T, RT_SC
 }
 
 TEST_CASE_TEMPLATE("hidden: a white furnace returns its radiance", T, RT_SCALARS) {
-    const path_scene<T> furnace = white_furnace<T>(2.0f, false);
     const ray<T> r{vec3<T>(T(-0.3), T(-0.6), T(5)), vec3<T>(T(-0.5), T(0.55), T(-5))};
-    for (bool cosine : {true, false})
-        for (int roulette : {0, 2}) {
-            path_settings how;
-            how.next_event = false;
-            how.cosine_sampling = cosine;
-            how.roulette_after = roulette;
-            const estimate e = path_estimate(furnace, r, how, 1000, 48, 7);
-            CHECK_MESSAGE(e.finite, "the furnace's paths are finite");
-            CHECK_MESSAGE(std::fabs(e.mean - 2.0) <= 5 * e.standard_error + 2e-4,
-                          "albedo-1 objects in a uniform world vanish: the expectation is the world's radiance");
-        }
+    check_furnace_by_bouncing(white_furnace<T>(2.0f, false), r, 7, "the furnace's paths are finite",
+                              "albedo-1 objects in a uniform world vanish: the expectation is the world's radiance");
 }
 
 TEST_CASE_TEMPLATE("hidden: next-event estimation counts each light once", T, RT_SCALARS) {
-    const path_scene<T> furnace = white_furnace<T>(2.0f, true);
     const ray<T> r{vec3<T>(T(-0.6), T(2.2), T(5)), vec3<T>(T(-0.5), T(-1.3), T(-4.8))};  // the left sphere's top
-    for (bool cosine : {true, false}) {
-        path_settings how;
-        how.cosine_sampling = cosine;
-        const estimate e = path_estimate(furnace, r, how, 1200, 48, 11);
-        CHECK_MESSAGE(std::fabs(e.mean - 2.0) <= 5 * e.standard_error + 2e-4,
-                      "a light sampled directly must not be counted again when a bounce hits it");
-    }
+    check_furnace_with_light_samples(white_furnace<T>(2.0f, true), r, 11,
+                                     "a light sampled directly must not be counted again when a bounce hits it");
 }
 
 TEST_CASE_TEMPLATE("hidden: a glass ball in a white furnace vanishes", T, RT_SCALARS) {
-    const path_scene<T> furnace = glass_furnace<T>(2.0f, false);
     const ray<T> r{vec3<T>(T(0.4), T(-0.5), T(5)), vec3<T>(T(0.9), T(0.45), T(-5))};  // onto the glass ball
-    for (bool cosine : {true, false})
-        for (int roulette : {0, 2}) {
-            path_settings how;
-            how.next_event = false;
-            how.cosine_sampling = cosine;
-            how.roulette_after = roulette;
-            const estimate e = path_estimate(furnace, r, how, 1000, 48, 13);
-            CHECK_MESSAGE(e.finite, "paths through glass are finite");
-            CHECK_MESSAGE(std::fabs(e.mean - 2.0) <= 5 * e.standard_error + 2e-4,
-                          "glass absorbs nothing: a glass vertex passes the throughput on unchanged");
-        }
+    check_furnace_by_bouncing(glass_furnace<T>(2.0f, false), r, 13, "paths through glass are finite",
+                              "glass absorbs nothing: a glass vertex passes the throughput on unchanged");
 }
 
 TEST_CASE_TEMPLATE("hidden: a light reached through glass is counted once", T, RT_SCALARS) {
@@ -181,13 +185,8 @@ TEST_CASE_TEMPLATE("hidden: a light reached through glass is counted once", T, R
                                       {vec3<T>(T(1.6), T(2.4), T(5)), vec3<T>(T(-0.3), T(-1.9), T(-5))},  // glass, from above
                                       {vec3<T>(T(-0.2), T(0.1), T(6)), vec3<T>(T(-0.15), T(0.05), T(-5.6))}};  // the matte one
     for (const ray<T>& r : rays)
-        for (bool cosine : {true, false}) {
-            path_settings how;
-            how.cosine_sampling = cosine;
-            const estimate e = path_estimate(furnace, r, how, 1200, 48, 17);
-            CHECK_MESSAGE(std::fabs(e.mean - 2.0) <= 5 * e.standard_error + 2e-4,
-                          "after a glass vertex the light a path reaches counts: no light sample saw it");
-        }
+        check_furnace_with_light_samples(furnace, r, 17,
+                                         "after a glass vertex the light a path reaches counts: no light sample saw it");
 }
 
 TEST_CASE_TEMPLATE("hidden: energy never grows along a path", T, RT_SCALARS) {
