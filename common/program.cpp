@@ -269,4 +269,16 @@ int run_chapter_program(int argc, char** argv, const chapter_program& program) {
     }
 }
 
+int run_study(const char* name, const std::function<int()>& study) {
+    try {
+        return study();
+    } catch (const not_implemented& e) {
+        std::fprintf(stderr, "%s: %s\n", name, e.what());
+        return exit_not_implemented;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: error: %s\n", name, e.what());
+        return 1;
+    }
+}
+
 }  // namespace rt

@@ -134,4 +134,12 @@ void add_flag_option(CLI::App& app, const std::string& name, bool& value, const 
 // rt::exit_not_implemented (3) when the render reached an exercise stub.
 int run_chapter_program(int argc, char** argv, const chapter_program& program);
 
+// main() of a chapter's study, a measurement with its own command line
+// (ch11-sampling-study, ch12-path-study): returns study's exit status, and
+// stops politely as run_chapter_program does when it throws: a stub reached
+// prints "NAME: not implemented yet: ..." and returns rt::exit_not_implemented,
+// any other error "NAME: error: ..." and returns 1.
+//   int main(int argc, char** argv) { return rt::run_study("ch12-path-study", [&] { return study(argc, argv); }); }
+int run_study(const char* name, const std::function<int()>& study);
+
 }  // namespace rt

@@ -16,7 +16,7 @@
 #include "picture.hpp"
 
 #include "common/chapter_scenes.hpp"
-#include "common/stub.hpp"
+#include "common/program.hpp"
 #include "common/timing.hpp"
 
 #include <cmath>
@@ -118,11 +118,5 @@ int study(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-    try {
-        return study(argc, argv);
-    } catch (const rt::not_implemented& e) {  // the stubs: stop politely, as every chapter program does
-        std::fprintf(stderr, "ch11-sampling-study: %s\n", e.what());
-        return rt::exit_not_implemented;
-    }
-}
+// A stub reached stops the study politely, as every chapter program does.
+int main(int argc, char** argv) { return rt::run_study("ch11-sampling-study", [&] { return study(argc, argv); }); }

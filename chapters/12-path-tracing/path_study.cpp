@@ -25,7 +25,7 @@
 #include "cornell_box.hpp"
 #include "picture.hpp"
 
-#include "common/stub.hpp"
+#include "common/program.hpp"
 #include "common/timing.hpp"
 
 #include <algorithm>
@@ -182,14 +182,5 @@ int study(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-    try {
-        return study(argc, argv);
-    } catch (const rt::not_implemented& e) {  // the stubs: stop politely, as every chapter program does
-        std::fprintf(stderr, "ch12-path-study: %s\n", e.what());
-        return rt::exit_not_implemented;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "ch12-path-study: error: %s\n", e.what());
-        return 1;
-    }
-}
+// A stub reached stops the study politely, as every chapter program does.
+int main(int argc, char** argv) { return rt::run_study("ch12-path-study", [&] { return study(argc, argv); }); }
