@@ -1,5 +1,6 @@
 #include "general_path.hpp"
 
+#include "chapters_setup.hpp"
 #include "look.hpp"
 
 #include "04-plane/plane.hpp"
@@ -11,7 +12,6 @@
 #include "02-sphere/sphere.hpp"
 #include "05-triangle/triangle.hpp"
 
-#include "common/timing.hpp"
 #include "common/object_dispatch.hpp"
 #include "common/render.hpp"
 
@@ -21,22 +21,24 @@ namespace rt::render_tool {
 
 namespace {
 
+// Chapter 02's, 04's and 05's shape tests, picked by the object's kind.
+template <class T>
+auto chapters_dispatch(const scene<T>& world) {
+    return object_dispatch(world, ch02::intersect_sphere<T>, ch04::intersect_plane<T>, ch05::intersect_triangle<T>);
+}
+
 template <class T>
 image render_typed(const scene_description& d, bool use_tree, int width, int height, render_stats& stats) {
-    const stopwatch setup;
-    const double setup_cpu = process_cpu_seconds();
-    const scene<T> world = convert_scene<T>(d.world);
-    const scene_camera<T> camera(d.camera, width, height);
-
-    const auto dispatch =
-        object_dispatch(world, ch02::intersect_sphere<T>, ch04::intersect_plane<T>, ch05::intersect_triangle<T>);
+    const setup_timer setup;
+    const chapters_scene<T> s(d, width, height);
+    const scene<T>& world = s.world;
+    const auto dispatch = chapters_dispatch(world);
     const ch03::object_intersector<T> intersect = dispatch.intersector();
     // Chapter 08's tree, when the plan says it pays (the same rule as the
     // specialised path's); an empty tree otherwise, never asked.
     const ch08::scene_tree<T> tree = use_tree ? ch08::build_scene_tree(world) : ch08::scene_tree<T>{};
     const ch08::leaf_intersector<T> leaf = ch08::leaf_test(tree, dispatch);
-    stats.setup_seconds = setup.seconds();
-    stats.setup_cpu_seconds = process_cpu_seconds() - setup_cpu;
+    setup.done(stats);
     auto closest = [&](const ray<T>& r, const interval<T>& range) {
         return use_tree ? ch08::scene_closest_hit(tree, leaf, dispatch, r, range)
                         : ch03::closest_hit(world.object_count(), intersect, r, range);
@@ -48,8 +50,8 @@ image render_typed(const scene_description& d, bool use_tree, int width, int hei
     };
 
     image img = render(width, height, [&](int col, int row) {
-        const ray<T> r = camera.primary_ray(col, row);
-        const auto hit = closest(r, camera.primary_range());
+        const ray<T> r = s.camera.primary_ray(col, row);
+        const auto hit = closest(r, s.camera.primary_range());
         if (!hit) return world.background;
         const material m = material_at(world, *hit);
         const vec3<T> n = hit->facing_normal(r);  // the side the viewer sees, as the chapters shade it
@@ -65,11 +67,9 @@ image render_typed(const scene_description& d, bool use_tree, int width, int hei
 
 template <class T>
 std::vector<count_map> heatmap_typed(const scene_description& d, int width, int height) {
-    const scene<T> world = convert_scene<T>(d.world);
-    const scene_camera<T> camera(d.camera, width, height);
-    const auto dispatch =
-        object_dispatch(world, ch02::intersect_sphere<T>, ch04::intersect_plane<T>, ch05::intersect_triangle<T>);
-    return ch08::tree_heatmap(world, ch08::build_scene_tree(world), dispatch, camera, width, height);
+    const chapters_scene<T> s(d, width, height);
+    return ch08::tree_heatmap(s.world, ch08::build_scene_tree(s.world), chapters_dispatch(s.world), s.camera, width,
+                              height);
 }
 
 }  // namespace
