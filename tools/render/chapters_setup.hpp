@@ -1,7 +1,8 @@
 // chapters_setup.hpp — what the paths that draw with the chapters' own code
-// (general_path.cpp, whitted_path.cpp) set up before the first ray: the scene
-// in T with its camera, and the time the set-up took (render_stats' setup
-// times, which rays per second leaves out).
+// (general_path.cpp, whitted_path.cpp; sampled_path.cpp times its set-up
+// alike) set up before the first ray: the scene in T with its camera, and the
+// time the set-up took (render_stats' setup times, which rays per second
+// leaves out).
 #pragma once
 
 #include "scene_plan.hpp"

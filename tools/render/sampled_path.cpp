@@ -1,5 +1,7 @@
 #include "sampled_path.hpp"
 
+#include "chapters_setup.hpp"
+
 #include "09-reflection/whitted.hpp"
 #include "11-sampling/picture.hpp"
 #include "11-sampling/sample_sequences.hpp"
@@ -8,7 +10,6 @@
 
 #include "common/random.hpp"
 #include "common/render.hpp"
-#include "common/timing.hpp"
 
 #include <atomic>
 #include <cmath>
@@ -78,8 +79,7 @@ image render_typed(const scene_description& d, const scene_plan& plan, int width
         throw scene_error(d.source, 0, 0, "camera.type",
                           "several samples per pixel, sphere lights and the path tracer draw a pinhole camera "
                           "(chapter 11's thin lens), not an orthographic one");
-    const stopwatch setup;
-    const double setup_cpu = process_cpu_seconds();
+    const setup_timer setup;
     const int spp = plan.spp;
     stats.samples = long(width) * long(height) * long(spp);
     if (plan.path_traced) {
@@ -97,8 +97,7 @@ image render_typed(const scene_description& d, const scene_plan& plan, int width
         settings.next_event = !s.lights.empty();
         settings.cosine_sampling = true;
         const int vertices = plan.bounces ? ch12::max_vertices : 1;
-        stats.setup_seconds = setup.seconds();
-        stats.setup_cpu_seconds = process_cpu_seconds() - setup_cpu;
+        setup.done(stats);
         const interval<T> camera_range = interval<T>::in_front_of_image_plane();
         image img = render(width, height, [&](int col, int row) {
             return box_filtered_pixel(c, col, row, spp, seed, [&](const ray<T>& r, pcg32& stream) {
@@ -112,8 +111,7 @@ image render_typed(const scene_description& d, const scene_plan& plan, int width
     if (plan.secondary_rays()) {
         const scene<T> world = convert_scene<T>(d.world);
         const lens_camera<T> c(d.camera, width, height);
-        stats.setup_seconds = setup.seconds();
-        stats.setup_cpu_seconds = process_cpu_seconds() - setup_cpu;
+        setup.done(stats);
         image img = render(width, height, [&](int col, int row) {
             return box_filtered_pixel(c, col, row, spp, seed, [&](const ray<T>& r, pcg32&) {
                 return ch09::trace(world, r, interval<T>::in_front_of_image_plane(), plan.depth, 1.0f);
@@ -129,8 +127,7 @@ image render_typed(const scene_description& d, const scene_plan& plan, int width
     settings.sequence = ch11::sequence_kind::stratified;
     settings.filter = ch11::filter_kind::tent;
     settings.seed = seed;
-    stats.setup_seconds = setup.seconds();
-    stats.setup_cpu_seconds = process_cpu_seconds() - setup_cpu;
+    setup.done(stats);
     image img = ch11::render_picture(s, settings);
     stats.rays = s.rays();
     return img;
