@@ -40,6 +40,7 @@ KIT_DENY = ["*/__pycache__/*", "*.pyc", "*/.DS_Store",
             "/tests/scenes/scene_plan_test.cpp",    # tests tools/render, which is not in the kit
             "/tests/scenes/bvh_test.cpp",           # part of scene_plan_test's executable (tools/render's tree)
             "/tests/scenes/far-sphere-up-close.json",  # a scene of rt-render's acne test (tools/render)
+            "/tests/scenes/far-sphere-instanced.json", # the same, for rt-render's two-level path
             "/tools/grader/README.md",              # the instructor's manual: the kit's README says how to preview
             "/tools/grader/screenshots/*",          # its pictures
             "/tools/grader/results/*",              # where and when the instructor's figures were measured

@@ -6,6 +6,7 @@
 #include "look.hpp"
 
 #include "06-shading/shading.hpp"  // chapter 06's shade(), for lit scenes
+#include "09-reflection/surface_error.hpp"  // hit points put back on their surfaces
 #include "common/render.hpp"
 #include "common/timing.hpp"
 
@@ -38,6 +39,8 @@ struct child_item {
     mat3d from_linear;    // parent space -> the placed object's space (the inverse transform)
     vec3d from_offset;
     mat3d normal_matrix;  // the placed object's normals -> parent space: the inverse's transpose
+    mat3d to_linear;      // the placed object's points -> parent space (the transform itself)
+    vec3d to_offset;
 };
 
 struct plane_item {
@@ -179,7 +182,7 @@ void build_level(const std::vector<object_definition>& defs, const std::vector<e
         if (placed.bounds.empty()) continue;  // nothing to hit in it
         const box3 b = of(to_float_box(placed_box(placed.bounds, i.to_parent)));
         level.children.push_back({i.object, i.from_parent.linear, i.from_parent.offset,
-                                  glm::transpose(i.from_parent.linear)});
+                                  glm::transpose(i.from_parent.linear), i.to_parent.linear, i.to_parent.offset});
         level.bounds.add(b);
         boxes.push_back(to_float_box(b));
         level.child_boxes.push_back(boxes.back());
@@ -269,6 +272,13 @@ struct local_hit {
     double t;
     int material = -1;
     vec3d normal{0};  // not normalised: in the space of the object the walk is in
+    // The hit point put back on the shape's surface (chapter 09's given
+    // on_sphere, on_triangle) in the shape's own space, then carried out
+    // through each transform: origin + t d in world space is off the
+    // surface by the rounding of t, about eps times the eye's distance,
+    // more than chapter 06's shadow offset for a far eye (fast_path.cpp,
+    // surface_point). In the space of the object the walk is in.
+    vec3d point{0};
 };
 
 // A node or an instance waiting to be visited, with where the ray enters its box.
@@ -321,7 +331,8 @@ public:
                     const sphere_item& s = level.spheres[item];
                     const double t = sphere_t(s, org, dir, a, tmin);
                     if (t < best.t) {
-                        best = {t, s.material, (org + t * dir - s.center) / s.radius};
+                        const vec3d on = ch09::on_sphere(sphere<double>{s.center, s.radius}, org + t * dir).point;
+                        best = {t, s.material, (on - s.center) / s.radius, on};
                         found = true;
                     }
                 } else if (item < spheres + triangles) {
@@ -329,7 +340,8 @@ public:
                     const double t = triangle_hit_t(x, org, dir, d_max, tmin);
                     if (t < best.t) {
                         const vec3d normal = cross(x.e1, x.e2);
-                        best = {t, x.material, dot(normal, dir) > 0 ? -normal : normal};
+                        const vec3d on = ch09::on_triangle(triangle<double>{x.a, x.b, x.c}, org + t * dir).point;
+                        best = {t, x.material, dot(normal, dir) > 0 ? -normal : normal, on};
                         found = true;
                     }
                 } else {
@@ -351,7 +363,8 @@ public:
                 const child_item& c = level.children[placed[k].index];
                 local_hit inside = best;
                 if (closest(c.object, c.from_linear * org + c.from_offset, c.from_linear * dir, tmin, inside)) {
-                    best = {inside.t, inside.material, c.normal_matrix * inside.normal};
+                    best = {inside.t, inside.material, c.normal_matrix * inside.normal,
+                            c.to_linear * inside.point + c.to_offset};
                     found = true;
                 }
             }
@@ -478,7 +491,8 @@ instanced_scene::hit instanced_scene::closest(const ray<double>& r, double tmin,
     for (const auto& p : d.planes) {
         const double t = plane_hit_t(p, r.origin, r.direction, tmin);
         if (t < best.t) {
-            best = {t, p.material, dot(p.unit_normal, r.direction) > 0 ? -p.unit_normal : p.unit_normal};
+            best = {t, p.material, dot(p.unit_normal, r.direction) > 0 ? -p.unit_normal : p.unit_normal,
+                    ch09::on_plane_through(p.point, p.unit_normal, r.origin + t * r.direction).point};
             plane = &p;
         }
     }
@@ -488,6 +502,7 @@ instanced_scene::hit instanced_scene::closest(const ray<double>& r, double tmin,
     h.t = best.t;
     h.material = best.material;
     h.normal = normalize(best.normal);
+    h.point = best.point;
     return h;
 }
 
@@ -519,7 +534,7 @@ image render_instanced(const scene_description& description, const instanced_sce
                 out = world.background;
                 continue;
             }
-            const vec3d point = r.origin + h.t * r.direction;
+            const vec3d& point = h.point;  // on the surface (local_hit::point)
             // A plane's checker follows the plane's own axes, as on the flat path (common/scene.hpp).
             const material& given = world.materials[size_t(h.material)];
             const material m = given.checker && h.plane_normal != vec3d(0)

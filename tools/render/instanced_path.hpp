@@ -67,6 +67,7 @@ public:
         double t = 0;
         int material = -1;  // -1: a miss
         vec3d normal{0};
+        vec3d point{0};         // the hit point on the surface hit, in world space (for shading)
         vec3d plane_normal{0};  // a plane's normal as the scene gives it (its checker's axes), 0 for other shapes
     };
     hit closest(const ray<double>& r, double tmin, double tmax) const;
