@@ -22,6 +22,52 @@ namespace {
 
 const std::string camera = R"("camera": {"eye": [2.1, 1.3, 1.7], "look_at": [0, 0, 0], "up": [0, 0, 1], "fov": 50, "width": 48, "height": 40})";
 
+// The packet walk (instanced_packets.cpp) against the one-ray walk, ray by
+// ray: the same t, material, normal and point, to the bit. First the
+// primary rays of each 8 x 4 tile (coherent, as rt-render sends them), then
+// packets of rays with random origins and directions (every ray of a packet
+// going its own way through the trees).
+void check_packets_agree(const scene_description& d, const instanced_scene& built) {
+    const scene_camera<double> cam(d.camera);
+    const double tmin = cam.primary_range().min;
+    long compared = 0, different = 0, hits = 0;
+    auto compare = [&](const ray<double> (&rays)[packet_width]) {
+        instanced_scene::hit together[packet_width];
+        built.closest(rays, tmin, infinity<double>, together);
+        for (int k = 0; k < packet_width; ++k) {
+            const instanced_scene::hit one = built.closest(rays[k], tmin, infinity<double>);
+            const instanced_scene::hit& h = together[k];
+            const bool same = one.material == h.material &&
+                              (one.material < 0 || (one.t == h.t && one.normal == h.normal && one.point == h.point &&
+                                                    one.plane_normal == h.plane_normal));
+            if (!same && different++ < 3)
+                MESSAGE("ray " << compared << ": one-ray walk t " << one.t << " material " << one.material
+                               << ", packet walk t " << h.t << " material " << h.material);
+            ++compared;
+            hits += one.material >= 0;
+        }
+    };
+    ray<double> rays[packet_width];
+    for (int row0 = 0; row0 < d.camera.height; row0 += 4)
+        for (int col0 = 0; col0 < d.camera.width; col0 += 8) {
+            for (int k = 0; k < packet_width; ++k)
+                rays[k] = cam.primary_ray(std::min(col0 + k % 8, d.camera.width - 1),
+                                          std::min(row0 + k / 8, d.camera.height - 1));
+            compare(rays);
+        }
+    std::mt19937_64 random(20261202);
+    std::uniform_real_distribution<double> u(-1.5, 1.5);
+    for (int packet = 0; packet < 64; ++packet) {
+        for (int k = 0; k < packet_width; ++k) {
+            const vec3d from(u(random), u(random), u(random)), towards(0.3 * u(random), 0.3 * u(random), 0.3 * u(random));
+            rays[k] = {from, towards - from};  // not normalised: t is in units of |d|
+        }
+        compare(rays);
+    }
+    CHECK(different == 0);
+    CHECK(hits > compared / 10);  // the rays meet the scene
+}
+
 // Every pixel's primary hit through the two-level tree against the flat
 // scene's (instances expanded, the specialised path in double): hit or miss
 // alike, t to 1e-9 relative (each level's transform rounds the ray).
@@ -45,6 +91,7 @@ void check_same_hits(const scene_description& d) {
         }
     CHECK(different == 0);
     CHECK(hits > 100);  // the view sees the scene
+    check_packets_agree(d, built);
   }
 }
 

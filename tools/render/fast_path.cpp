@@ -64,27 +64,11 @@
 #include <type_traits>
 #include <vector>
 
-// Run-time dispatch. This file (with its parts) is compiled three times (tools/render/
-// CMakeLists.txt): plain x86-64, AVX2 + FMA, and AVX-512, each time in its
-// own namespace (RT_FAST_ISA), and fast_path_dispatch.cpp picks one at
-// start-up from what the CPU has. The instruction set is switched on here,
-// *after* every header, with a pragma rather than with -mavx2 on the
-// command line: the headers' inline functions (std::vector, glm, ...) are
-// then compiled for plain x86-64 in every copy, so whichever copy the
-// linker keeps is safe on any CPU; only this file's own kernels (templates
-// in an anonymous namespace, private to each copy, in the parts included
-// below) use the wide units.
-// Contraction is off for the whole project and FMA appears only where the
-// code writes std::fma (exactly rounded on every path, in hardware or not),
-// so all three copies give the same bits.
-#ifndef RT_FAST_ISA
-#define RT_FAST_ISA isa_baseline
-#endif
-#if defined(RT_FAST_AVX512)
-#pragma GCC target("avx512f,avx512vl,avx512bw,avx512dq,avx2,fma,bmi,bmi2,lzcnt,popcnt")
-#elif defined(RT_FAST_AVX2)
-#pragma GCC target("avx2,fma,bmi,bmi2,lzcnt,popcnt")
-#endif
+// Run-time dispatch: this file (with its parts) is compiled once per
+// instruction set, each copy in its own namespace; isa_target.hpp, included
+// after every header, switches the copy's instruction set on (it says why
+// there and not on the command line).
+#include "isa_target.hpp"
 
 namespace rt::render_tool::RT_FAST_ISA {
 

@@ -1,5 +1,6 @@
 // instanced_path.cpp — the two-level tree and its walk (see instanced_path.hpp).
 #include "instanced_path.hpp"
+#include "instanced_data.hpp"
 
 #include "bvh_build.hpp"
 #include "fast_path_kernels.hpp"  // the plane and triangle tests, as the specialised path has them
@@ -18,73 +19,6 @@
 #include <stdexcept>
 
 namespace rt::render_tool {
-
-namespace {
-
-struct sphere_item {
-    vec3d center;
-    double radius, radius2;
-    int material;
-};
-
-struct triangle_item {
-    vec3d a, e1, e2, b, c;  // corner a and the edges b - a, c - a; b and c for the exact decision
-    double flat_scale;       // fast_path_kernels.hpp's bound on the determinant's rounding, over d_max
-    int material;
-};
-
-// An instance inside an object: where a ray goes to meet it.
-struct child_item {
-    int object;
-    mat3d from_linear;    // parent space -> the placed object's space (the inverse transform)
-    vec3d from_offset;
-    mat3d normal_matrix;  // the placed object's normals -> parent space: the inverse's transpose
-    mat3d to_linear;      // the placed object's points -> parent space (the transform itself)
-    vec3d to_offset;
-};
-
-struct plane_item {
-    vec3d point, unit_normal, normal;  // normal as given, for the exact "parallel" decision
-    int material;
-};
-
-// A box in double, as the walk tests it (the tree stores float boxes,
-// rounded outwards: they still hold everything).
-struct box3 {
-    vec3d lo{infinity<double>}, hi{-infinity<double>};
-    void add(const vec3d& p) { lo = glm::min(lo, p), hi = glm::max(hi, p); }
-    void add(const box3& b) { lo = glm::min(lo, b.lo), hi = glm::max(hi, b.hi); }
-    bool empty() const { return !(lo.x <= hi.x); }
-};
-
-}  // namespace
-
-// One object's items and its tree over them: spheres are items
-// [0, spheres), triangles follow, then the instances it places.
-struct level_object {
-    std::vector<sphere_item> spheres;
-    std::vector<triangle_item> triangles;
-    std::vector<child_item> children;
-    std::vector<bvh_box> child_boxes;  // in this object's space, as the tree holds them
-    bvh_tree tree;
-    box3 bounds;  // of everything in it, in its own space (empty: nothing to hit)
-    bool expanded = false;  // its instances expanded into its own shapes (expand_at_most)
-    size_t bytes() const {
-        return tree.bytes() + spheres.size() * sizeof(sphere_item) + triangles.size() * sizeof(triangle_item) +
-               children.size() * sizeof(child_item);
-    }
-};
-
-struct instanced_scene_data {
-    std::vector<level_object> objects;  // the scene's objects, then the top level
-    int top = 0;
-    std::vector<plane_item> planes;  // in world space: the top level's and those moved out of placed objects
-    double build_seconds = 0;
-    expanded_counts expanded;
-    size_t stored_spheres = 0, stored_triangles = 0, placements = 0;
-    size_t expanded_objects = 0;  // placed objects stored expanded in their own space
-    std::uint64_t expand_at_most = 0;
-};
 
 namespace {
 
@@ -209,34 +143,6 @@ void hoist_planes(const std::vector<object_definition>& defs, const std::vector<
             hoist_planes(defs, counts, defs[size_t(i.object)], then(i.to_parent, to_world), out);
 }
 
-// ---- the kernels: one ray, one shape ------------------------------------
-
-// The robust sphere test: the perpendicular foot formed before squaring,
-// then the stable root pair (as the specialised path's robust kernel).
-double sphere_t(const sphere_item& s, const vec3d& o, const vec3d& d, double a, double tmin) {
-    const vec3d f = o - s.center;
-    const double half_b = dot(f, d);
-    const vec3d g = f - (half_b / a) * d;
-    const double disc = a * (s.radius2 - dot(g, g));
-    if (!(disc >= 0)) return infinity<double>;
-    const double q = -(half_b + std::copysign(std::sqrt(disc), half_b));
-    const double c = dot(f, f) - s.radius2;
-    const double r1 = c / q, r2 = q / a;
-    const double near = std::min(r1, r2), far = std::max(r1, r2);
-    const double t = near > tmin ? near : far;
-    return t > tmin ? t : infinity<double>;
-}
-
-double triangle_hit_t(const triangle_item& x, const vec3d& o, const vec3d& d, double d_max, double tmin) {
-    const vec3d s = o - x.a, q = cross(s, x.e1);
-    int unsure = 0;
-    const double t = triangle_t(s.x, s.y, s.z, q.x, q.y, q.z, x.e1.x, x.e1.y, x.e1.z, x.e2.x, x.e2.y, x.e2.z, d.x, d.y,
-                                d.z, tmin, x.flat_scale * d_max + flat_tiny<double>(), unsure);
-    if (!unsure) return t;
-    return triangle_t_exact(s.x, s.y, s.z, q.x, q.y, q.z, x.e1.x, x.e1.y, x.e1.z, x.e2.x, x.e2.y, x.e2.z, d.x, d.y, d.z,
-                            tmin, x.a, x.b, x.c);
-}
-
 double plane_hit_t(const plane_item& p, const vec3d& o, const vec3d& d, double tmin) {
     const vec3d n = p.unit_normal;
     const double num = dot(n, p.point - o);
@@ -268,19 +174,6 @@ struct slab_ray {
     }
 };
 
-struct local_hit {
-    double t;
-    int material = -1;
-    vec3d normal{0};  // not normalised: in the space of the object the walk is in
-    // The hit point put back on the shape's surface (chapter 09's given
-    // on_sphere, on_triangle) in the shape's own space, then carried out
-    // through each transform: origin + t d in world space is off the
-    // surface by the rounding of t, about eps times the eye's distance,
-    // more than chapter 06's shadow offset for a far eye (fast_path.cpp,
-    // surface_point). In the space of the object the walk is in.
-    vec3d point{0};
-};
-
 // A node or an instance waiting to be visited, with where the ray enters its box.
 struct waiting {
     std::uint32_t index;
@@ -298,16 +191,19 @@ public:
     // nearer one) are skipped without moving the ray into their space. An
     // instance's box (in this object's space, widened) is tested before the
     // ray is moved into its space: most of a leaf's instances are missed.
-    bool closest(int o, const vec3d& org, const vec3d& dir, double tmin, local_hit& best) const {
+    // The root's box is not tested when test_root is false: an instance's
+    // box, tested in its parent's space, already holds it.
+    bool closest(int o, const vec3d& org, const vec3d& dir, double tmin, local_hit& best, bool test_root = true) const {
         const level_object& level = d_.objects[size_t(o)];
         if (level.tree.nodes.empty()) return false;
         const slab_ray slabs(org, dir);
-        const double a = dot(dir, dir), d_max = direction_max(dir.x, dir.y, dir.z);
+        const double a = dot(dir, dir);
         const size_t spheres = level.spheres.size(), triangles = level.triangles.size();
+        const double d_max = triangles > 0 ? direction_max(dir.x, dir.y, dir.z) : 0;  // only triangles use it
         bool found = false;
         waiting stack[128];
         int top = 0;
-        const double root = slabs.entry(level.tree.nodes[0].box, tmin, best.t);
+        const double root = test_root ? slabs.entry(level.tree.nodes[0].box, tmin, best.t) : tmin;
         if (root < best.t) stack[top++] = {0, root};
         while (top > 0) {
             const waiting w = stack[--top];
@@ -362,7 +258,7 @@ public:
                 // the same point there.
                 const child_item& c = level.children[placed[k].index];
                 local_hit inside = best;
-                if (closest(c.object, c.from_linear * org + c.from_offset, c.from_linear * dir, tmin, inside)) {
+                if (closest(c.object, c.from_linear * org + c.from_offset, c.from_linear * dir, tmin, inside, false)) {
                     best = {inside.t, inside.material, c.normal_matrix * inside.normal,
                             c.to_linear * inside.point + c.to_offset};
                     found = true;
@@ -476,17 +372,24 @@ std::string instanced_scene::describe() const {
                   "instances); expanded: %llu spheres, %llu triangles, %llu planes; stored: %zu spheres, %zu "
                   "triangles (%zu placed objects of at most %llu shapes stored expanded in their own space); %.3f MB "
                   "of trees and shapes, built in %.1f ms; double, robust sphere test, rays moved into each "
-                  "instance's space, nearest instance first",
+                  "instance's space, nearest instance first; primary rays in packets of 32 (%s), shadow rays one "
+                  "at a time",
                   used, d.placements, (unsigned long long)d.expanded.spheres, (unsigned long long)d.expanded.triangles,
                   (unsigned long long)d.expanded.planes, d.stored_spheres, d.stored_triangles, d.expanded_objects,
-                  (unsigned long long)d.expand_at_most, double(bytes()) / 1e6, d.build_seconds * 1e3);
+                  (unsigned long long)d.expand_at_most, double(bytes()) / 1e6, d.build_seconds * 1e3, fast_path_isa());
     return line;
 }
 
-instanced_scene::hit instanced_scene::closest(const ray<double>& r, double tmin, double tmax) const {
-    const instanced_scene_data& d = *data_;
-    local_hit best{tmax};
-    walker(d).closest(d.top, r.origin, r.direction, tmin, best);
+bool closest_one_ray(const instanced_scene_data& d, int o, const vec3d& origin, const vec3d& direction, double tmin,
+                     local_hit& best) {
+    return walker(d).closest(o, origin, direction, tmin, best, false);
+}
+
+namespace {
+
+// The closest hit of one ray in the trees (best) and then among the planes,
+// which are in no tree, as the scene's hit.
+instanced_scene::hit with_planes(const instanced_scene_data& d, const ray<double>& r, double tmin, local_hit best) {
     const plane_item* plane = nullptr;
     for (const auto& p : d.planes) {
         const double t = plane_hit_t(p, r.origin, r.direction, tmin);
@@ -496,7 +399,7 @@ instanced_scene::hit instanced_scene::closest(const ray<double>& r, double tmin,
             plane = &p;
         }
     }
-    hit h;
+    instanced_scene::hit h;
     if (best.material < 0) return h;
     if (plane) h.plane_normal = plane->normal;  // the planes come last: the closest hit is this plane's
     h.t = best.t;
@@ -506,12 +409,60 @@ instanced_scene::hit instanced_scene::closest(const ray<double>& r, double tmin,
     return h;
 }
 
+}  // namespace
+
+instanced_scene::hit instanced_scene::closest(const ray<double>& r, double tmin, double tmax) const {
+    const instanced_scene_data& d = *data_;
+    local_hit best{tmax};
+    walker(d).closest(d.top, r.origin, r.direction, tmin, best);
+    return with_planes(d, r, tmin, best);
+}
+
+void instanced_scene::closest(const ray<double> (&rays)[packet_width], double tmin, double tmax,
+                              hit (&out)[packet_width]) const {
+    const instanced_scene_data& d = *data_;
+    local_hit best[packet_width];
+    for (local_hit& b : best) b.t = tmax;
+    closest_in_trees_packet(d, rays, tmin, best);
+    for (int k = 0; k < packet_width; ++k) out[k] = with_planes(d, rays[k], tmin, best[k]);
+}
+
 bool instanced_scene::blocked(const ray<double>& r, double tmin, double tmax) const {
     const instanced_scene_data& d = *data_;
     for (const auto& p : d.planes)
         if (plane_hit_t(p, r.origin, r.direction, tmin) < tmax) return true;
     return walker(d).blocked(d.top, r.origin, r.direction, tmin, tmax);
 }
+
+namespace {
+
+// Primary rays go in packets: the pixels of a tile of 8 x 4, walked
+// together (instanced_packets.cpp). tile(row0, col0, body) finds the
+// closest hits of the tile whose top-left pixel is (col0, row0) and calls
+// body(col, row, ray, hit) for each of its pixels inside the image.
+constexpr int tile_w = 8, tile_h = packet_width / tile_w;
+
+template <class Body>
+void for_each_tile_pixel(const scene_camera<double>& camera, const instanced_scene& built, double tmin, int row0,
+                         Body&& body) {
+    const int width = camera.width(), height = camera.height();
+    ray<double> rays[packet_width];
+    instanced_scene::hit hits[packet_width];
+    for (int col0 = 0; col0 < width; col0 += tile_w) {
+        // A tile over the image's edge repeats its last column or row.
+        for (int k = 0; k < packet_width; ++k)
+            rays[k] = camera.primary_ray(std::min(col0 + k % tile_w, width - 1), std::min(row0 + k / tile_w, height - 1));
+        built.closest(rays, tmin, infinity<double>, hits);
+        for (int k = 0; k < packet_width; ++k) {
+            const int col = col0 + k % tile_w, row = row0 + k / tile_w;
+            if (col < width && row < height) body(col, row, rays[k], hits[k]);
+        }
+    }
+}
+
+int tile_rows(int height) { return (height + tile_h - 1) / tile_h; }
+
+}  // namespace
 
 image render_instanced(const scene_description& description, const instanced_scene& built, int width, int height,
                        render_stats& stats) {
@@ -520,19 +471,18 @@ image render_instanced(const scene_description& description, const instanced_sce
     const rt::scene<double>& world = description.world;
     image img(width, height);
     std::atomic<long> shadow_rays{0};
-    for_each_row(height, [&](int row) {
+    for_each_row(tile_rows(height), [&](int tile_row) {
         long shadows = 0;
         ch06::occlusion_test<double> occluded = [&](const ray<double>& r, const interval<double>& range) {
             ++shadows;
             return built.blocked(r, range.min, range.max);
         };
-        for (int col = 0; col < width; ++col) {
-            const ray<double> r = camera.primary_ray(col, row);
-            const instanced_scene::hit h = built.closest(r, tmin, infinity<double>);
+        for_each_tile_pixel(camera, built, tmin, tile_row * tile_h,
+                            [&](int col, int row, const ray<double>& r, const instanced_scene::hit& h) {
             color& out = img.at(col, row);
             if (h.material < 0) {
                 out = world.background;
-                continue;
+                return;
             }
             const vec3d& point = h.point;  // on the surface (local_hit::point)
             // A plane's checker follows the plane's own axes, as on the flat path (common/scene.hpp).
@@ -543,7 +493,7 @@ image render_instanced(const scene_description& description, const instanced_sce
             const vec3d n = facing_normal(h.normal, r.direction);  // the side the viewer sees (common/hit_record.hpp)
             out = world.lights.empty() ? unlit_colour(m, n, r.direction)
                                        : ch06::shade(point, n, -r.direction, m, world.lights, world.ambient, occluded);
-        }
+        });
         shadow_rays += shadows;
     });
     stats.rays = long(width) * long(height) + shadow_rays.load();
@@ -555,10 +505,10 @@ long count_primary_hits_instanced(const scene_description& description, const in
     const scene_camera<double> camera(description.camera, width, height);
     const double tmin = camera.primary_range().min;
     std::atomic<long> hits{0};
-    for_each_row(height, [&](int row) {
+    for_each_row(tile_rows(height), [&](int tile_row) {
         long h = 0;
-        for (int col = 0; col < width; ++col)
-            h += built.closest(camera.primary_ray(col, row), tmin, infinity<double>).material >= 0;
+        for_each_tile_pixel(camera, built, tmin, tile_row * tile_h,
+                            [&](int, int, const ray<double>&, const instanced_scene::hit& x) { h += x.material >= 0; });
         hits += h;
     });
     return hits.load();
