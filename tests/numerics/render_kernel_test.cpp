@@ -177,10 +177,9 @@ TEST_CASE("render brute-force triangle cull: tiny far triangles give brute force
 }
 
 // One box, [2^-100, 2^-99]^3 in float, as a one-leaf tree, walked by the
-// shadow ray's walk and the wide tree's (the packet walk keeps its stand-in,
-// see packet_reciprocal in fast_path_traversal.hpp). Chapter 08's rule: a ray parallel to a
-// slab, with its origin on one of the slab's face planes, lies in the
-// closed slab for every t.
+// shadow ray's walk, the wide tree's and the packet walk (every lane the
+// same ray). Chapter 08's rule: a ray parallel to a slab, with its origin
+// on one of the slab's face planes, lies in the closed slab for every t.
 struct box_case {
     float o[3], d[3];
     bool crosses;  // the exact answer: does the ray meet the closed box at some t in [0, 10)?
@@ -215,6 +214,17 @@ TEST_CASE("render box test: origin on a face plane, a zero direction component, 
         CHECK(rk::traverse_any(binary, origin, direction, 10.0f, [](size_t, size_t) { return true; }) == c.crosses);
         CHECK(rk::traverse_wide<true>(wide_tree, origin, direction, 10.0f,
                                       [](std::uint32_t, std::uint32_t) { return true; }) == c.crosses);
+        // the packet walk of the binary tree (primary rays)
+        rk::packet<float> p;
+        alignas(64) float best_t[rk::W];
+        for (int k = 0; k < rk::W; ++k) {
+            p.ox[k] = c.o[0], p.oy[k] = c.o[1], p.oz[k] = c.o[2];
+            p.dx[k] = c.d[0], p.dy[k] = c.d[1], p.dz[k] = c.d[2];
+            best_t[k] = 10.0f;
+        }
+        bool leaf_reached = false;
+        rk::traverse_packet(binary, p, best_t, [&](size_t, size_t) { leaf_reached = true; });
+        CHECK(leaf_reached == c.crosses);
     }
 }
 

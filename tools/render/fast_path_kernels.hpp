@@ -158,4 +158,23 @@ inline T direction_max(T dx, T dy, T dz) {
     return formulations::direction_scale(vec3<T>(dx, dy, dz)) != 0 ? infinity<T> : m;
 }
 
+// One slab of a ray's box test, chapter 08's rule (solutions/08-acceleration),
+// for every walk in tools/render: inv = 1 / d, infinite for a zero
+// component; the near face is lo for a positive reciprocal and hi for a
+// negative one (-0's reciprocal is -inf: negative too); the exit is widened
+// by `widen` (a few ulps, Ize 2013); and the running entry and exit are
+// updated by comparisons that keep the old value when the new one is NaN.
+// A NaN, (face - o) * inf = 0 * inf, comes only from a ray parallel to the
+// slab with its origin on one of its face planes; such a ray lies in the
+// closed slab for every t, so the slab constrains nothing, which is what
+// keeping the old value gives. Only selects: a loop over rays is vectorised.
+template <class T>
+[[gnu::always_inline]] inline void slab_axis(T lo, T hi, T o, T inv, T widen, T& enter, T& leave) {
+    const bool down = inv < 0;
+    const T t0 = ((down ? hi : lo) - o) * inv;
+    const T t1 = ((down ? lo : hi) - o) * inv * widen;
+    enter = t0 > enter ? t0 : enter;
+    leave = t1 < leave ? t1 : leave;
+}
+
 }  // namespace rt::render_tool

@@ -7,16 +7,9 @@
 #error "a part of fast_path.cpp: included by it, after its headers and its target pragma"
 #endif
 
-// The slab test's rule is chapter 08's (solutions/08-acceleration): the
-// reciprocal of a direction component is 1 / d, infinite for a zero one;
-// the near face is lo when d's sign bit is clear and hi otherwise, and the
-// running entry and exit are updated by selects that keep the old value
-// when the new one is NaN. A NaN, (face - o) * inf = 0 * inf, comes only
-// from a ray parallel to a slab with its origin on one of the slab's face
-// planes; such a ray lies in the closed slab for every t, so the slab
-// constrains nothing, which is what skipping the NaN gives. (The stand-in
-// 1e30 for infinity this replaces gave an exit of 0 there, and a finite
-// exit near t = 1 for coordinates near 2^-100.)
+// The slab test's rule is chapter 08's (slab_axis, fast_path_kernels.hpp):
+// an infinite reciprocal for a zero direction component, the near face by
+// the reciprocal's sign, and NaN-safe updates of the entry and exit.
 // A component that is not zero but whose reciprocal overflows float (below
 // 2^-128) is treated as parallel. That cannot drop a hit in a box padded
 // by box_pad (soa_scene::build_trees): the renderer's directions have a
@@ -31,20 +24,11 @@ inline float slab_reciprocal(float d) { return 1.0f / d; }
 // never falls just short of a rounded entry for a ray that grazes a box.
 constexpr float slab_widen = 1.0f + 4 * std::numeric_limits<float>::epsilon();
 
-// NOT chapter 08's rule: the packet walk (traverse_packet, the spheres'
-// tree) keeps the old stand-in, a zero component's reciprocal 1e30, so its
-// min / max need no NaN care. With chapter 08's rule (selects by sign bit)
-// rt-bench's section 4 measured the packet walk at half its speed (1.23x of
-// Embree's rtcIntersect1 at a million spheres became 0.59x, same run, load
-// 17-22), so it is not used here yet. What the stand-in gets wrong: with
-// the origin exactly on a face plane of a slab the ray lies in (d = 0), that
-// face's parameter is 0 and the box counts as left at t = 0; and with
-// coordinates near 2^-100, (face - o) * 1e30 is a finite exit near t = 1.
-// The boxes' padding (1e-6 of the scene's magnitude) keeps rays' origins off
-// the faces of ordinary scenes; numerics.render box test shows the cases.
-inline float packet_reciprocal(float d) { return d == 0.0f ? std::copysign(1e30f, d) : 1.0f / d; }
-
-// The packet's rays in float, as the slab tests of traverse_packet use them.
+// The packet's rays in float, as the slab tests of traverse_packet use
+// them, with the rule above: the near face and the NaN-safe updates are
+// selects, so the loop over the 32 lanes is still vectorised (blends where
+// the stand-in 1e30 had min and max; 3-5% slower on rt-bench's scenes, not
+// the half of an earlier measurement under load).
 struct packet_slabs {
     alignas(64) float ox[W], oy[W], oz[W], ix[W], iy[W], iz[W];
 
@@ -52,8 +36,8 @@ struct packet_slabs {
     [[gnu::always_inline]] explicit packet_slabs(const packet<T>& p) {
         for (int k = 0; k < W; ++k) {
             ox[k] = float(p.ox[k]), oy[k] = float(p.oy[k]), oz[k] = float(p.oz[k]);
-            ix[k] = packet_reciprocal(float(p.dx[k])), iy[k] = packet_reciprocal(float(p.dy[k])),
-            iz[k] = packet_reciprocal(float(p.dz[k]));
+            ix[k] = slab_reciprocal(float(p.dx[k])), iy[k] = slab_reciprocal(float(p.dy[k])),
+            iz[k] = slab_reciprocal(float(p.dz[k]));
         }
     }
 
@@ -62,14 +46,12 @@ struct packet_slabs {
     [[gnu::always_inline]] bool opened(const bvh_box& b, const T* best_t) const {
         int any = 0;
         for (int k = 0; k < W; ++k) {
-            const float x0 = (b.lo[0] - ox[k]) * ix[k], x1 = (b.hi[0] - ox[k]) * ix[k];
-            const float y0 = (b.lo[1] - oy[k]) * iy[k], y1 = (b.hi[1] - oy[k]) * iy[k];
-            const float z0 = (b.lo[2] - oz[k]) * iz[k], z1 = (b.hi[2] - oz[k]) * iz[k];
-            const float enter = std::max(std::max(std::min(x0, x1), std::min(y0, y1)), std::max(std::min(z0, z1), 0.0f));
-            const float leave = std::min(std::min(std::max(x0, x1), std::max(y0, y1)), std::max(z0, z1)) * slab_widen;
             // best_t in float, rounded up a little: never below the true value.
-            const float limit = float(best_t[k]) * slab_widen;
-            any |= int((enter <= leave) & (enter <= limit));
+            float enter = 0, leave = float(best_t[k]) * slab_widen;
+            slab_axis(b.lo[0], b.hi[0], ox[k], ix[k], slab_widen, enter, leave);
+            slab_axis(b.lo[1], b.hi[1], oy[k], iy[k], slab_widen, enter, leave);
+            slab_axis(b.lo[2], b.hi[2], oz[k], iz[k], slab_widen, enter, leave);
+            any |= int(enter <= leave);
         }
         return any != 0;
     }
@@ -116,13 +98,7 @@ template <class T, class Blocked>
     const float limit = float(tmax) * slab_widen;
     auto opened = [&](const bvh_box& b) {
         float enter = 0, leave = limit;
-        for (int a = 0; a < 3; ++a) {  // chapter 08's rule, as packet_slabs::axis
-            const bool down = std::signbit(inv[a]);
-            const float t0 = ((down ? b.hi[a] : b.lo[a]) - o[a]) * inv[a];
-            const float t1 = ((down ? b.lo[a] : b.hi[a]) - o[a]) * inv[a] * slab_widen;
-            enter = t0 > enter ? t0 : enter;
-            leave = t1 < leave ? t1 : leave;
-        }
+        for (int a = 0; a < 3; ++a) slab_axis(b.lo[a], b.hi[a], o[a], inv[a], slab_widen, enter, leave);
         return enter <= leave;
     };
     std::uint32_t stack[256];

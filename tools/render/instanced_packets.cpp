@@ -67,15 +67,8 @@ struct packet_hits {
 // Lane k's bit.
 constexpr std::uint32_t bit(int k) { return std::uint32_t(1) << k; }
 
-// The packet's slab tests, in double, with chapter 08's rule: the
-// reciprocal of a zero direction component is infinite; the near face is
-// the low one for a positive reciprocal and the high one otherwise; and the
-// running entry and exit are updated by comparisons that keep the old value
-// when the new one is NaN. A NaN, 0 * inf, comes only from a ray parallel to
-// a slab with its origin on one of the slab's face planes, and such a ray
-// lies in the closed slab for every t: the slab constrains nothing, which
-// is what keeping the old value gives. The exit is widened by a few ulps,
-// as the one-ray walk's (slab_ray::entry).
+// The packet's slab tests, in double, with chapter 08's rule (slab_axis in
+// fast_path_kernels.hpp), the exit widened as the one-ray walk's.
 struct packet_slabs {
     alignas(64) double ox[W], oy[W], oz[W], ix[W], iy[W], iz[W];
 
@@ -86,13 +79,7 @@ struct packet_slabs {
         }
     }
 
-    [[gnu::always_inline]] static void axis(double lo, double hi, double o, double inv, double& enter, double& leave) {
-        const bool down = inv < 0;  // -0's reciprocal is -inf: down too
-        const double t0 = ((down ? hi : lo) - o) * inv;
-        const double t1 = ((down ? lo : hi) - o) * inv * (1 + 8 * std::numeric_limits<double>::epsilon());
-        enter = t0 > enter ? t0 : enter;
-        leave = t1 < leave ? t1 : leave;
-    }
+    static constexpr double widen = 1 + 8 * std::numeric_limits<double>::epsilon();
 
     // Does some ray k enter box b between 0 and its closest hit so far?
     [[gnu::always_inline]] bool opened(const bvh_box& b, const double* best_t) const {
@@ -100,9 +87,9 @@ struct packet_slabs {
         int any = 0;
         for (int k = 0; k < W; ++k) {
             double enter = 0, leave = best_t[k];
-            axis(lx, hx, ox[k], ix[k], enter, leave);
-            axis(ly, hy, oy[k], iy[k], enter, leave);
-            axis(lz, hz, oz[k], iz[k], enter, leave);
+            slab_axis(lx, hx, ox[k], ix[k], widen, enter, leave);
+            slab_axis(ly, hy, oy[k], iy[k], widen, enter, leave);
+            slab_axis(lz, hz, oz[k], iz[k], widen, enter, leave);
             any |= int(enter <= leave);
         }
         return any != 0;
@@ -114,9 +101,9 @@ struct packet_slabs {
         std::uint32_t mask = 0;
         for (int k = 0; k < W; ++k) {
             double enter = 0, leave = best_t[k];
-            axis(b.lo[0], b.hi[0], ox[k], ix[k], enter, leave);
-            axis(b.lo[1], b.hi[1], oy[k], iy[k], enter, leave);
-            axis(b.lo[2], b.hi[2], oz[k], iz[k], enter, leave);
+            slab_axis(double(b.lo[0]), double(b.hi[0]), ox[k], ix[k], widen, enter, leave);
+            slab_axis(double(b.lo[1]), double(b.hi[1]), oy[k], iy[k], widen, enter, leave);
+            slab_axis(double(b.lo[2]), double(b.hi[2]), oz[k], iz[k], widen, enter, leave);
             mask |= enter <= leave ? bit(k) : 0;
         }
         return mask;

@@ -153,23 +153,17 @@ double plane_hit_t(const plane_item& p, const vec3d& o, const vec3d& d, double t
 
 // ---- the walk -----------------------------------------------------------
 
-// The ray as the slab tests use it: a zero direction component's
-// reciprocal is huge instead of infinite (never 0 * inf = NaN), the exit
-// widened by a few ulps (Ize 2013), as the specialised path does in float.
+// The ray as the slab tests use it: chapter 08's rule (slab_axis in
+// fast_path_kernels.hpp), the exit widened by a few ulps.
 struct slab_ray {
     vec3d o, inv;
-    slab_ray(const vec3d& origin, const vec3d& d) : o(origin) {
-        for (int a = 0; a < 3; ++a) inv[a] = d[a] == 0 ? std::copysign(1e300, d[a]) : 1 / d[a];
-    }
+    slab_ray(const vec3d& origin, const vec3d& d) : o(origin), inv(1 / d.x, 1 / d.y, 1 / d.z) {}
     // Where the ray enters the box within (tmin, tmax), or infinity when it
     // does not meet it there.
     double entry(const bvh_box& b, double tmin, double tmax) const {
+        constexpr double widen = 1 + 8 * std::numeric_limits<double>::epsilon();
         double enter = tmin, leave = tmax;
-        for (int a = 0; a < 3; ++a) {
-            const double t0 = (double(b.lo[a]) - o[a]) * inv[a], t1 = (double(b.hi[a]) - o[a]) * inv[a];
-            enter = std::max(enter, std::min(t0, t1));
-            leave = std::min(leave, std::max(t0, t1) * (1 + 8 * std::numeric_limits<double>::epsilon()));
-        }
+        for (int a = 0; a < 3; ++a) slab_axis(double(b.lo[a]), double(b.hi[a]), o[a], inv[a], widen, enter, leave);
         return enter <= leave ? enter : infinity<double>;
     }
 };
