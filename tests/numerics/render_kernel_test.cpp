@@ -223,8 +223,19 @@ TEST_CASE("render box test: origin on a face plane, a zero direction component, 
             best_t[k] = 10.0f;
         }
         bool leaf_reached = false;
-        rk::traverse_packet(binary, p, best_t, [&](size_t, size_t) { leaf_reached = true; });
+        rk::traverse_packet(binary, p, best_t, [&](size_t, size_t) { leaf_reached = true; },
+                            [&](int, size_t, size_t) { leaf_reached = true; });
         CHECK(leaf_reached == c.crosses);
+        // ... and with only lane 5 carrying the case (the others move away
+        // from the box), which the packet walk hands to that ray alone
+        // (traverse_one_lane): the same rule there.
+        for (int k = 0; k < rk::W; ++k)
+            if (k != 5) p.ox[k] = p.oy[k] = 0x1.8p-100f, p.oz[k] = 1, p.dx[k] = p.dy[k] = 0, p.dz[k] = 1;
+        int whole = 0, alone = 0;
+        rk::traverse_packet(binary, p, best_t, [&](size_t, size_t) { ++whole; }, [&](int k, size_t, size_t) { alone += k == 5 ? 1 : 100; });
+        CHECK(whole == 0);
+        CHECK((alone > 0) == c.crosses);
+        CHECK(alone < 100);
     }
 }
 

@@ -14,9 +14,10 @@ void closest_hits_comfortable(const soa_scene<T>& s, const packet<T>& p, packet_
                               index_t<T>* object) {
     if constexpr (SM != sphere_mode::none) {
         if (s.tree)
-            traverse_packet(s.sphere_tree, p, best.t, [&](size_t begin, size_t end) {
-                spheres_closest<T, SM, CommonOrigin, true>(s, begin, end, p, tmin, best);
-            });
+            traverse_packet(
+                s.sphere_tree, p, best.t,
+                [&](size_t begin, size_t end) { spheres_closest<T, SM, CommonOrigin, true>(s, begin, end, p, tmin, best); },
+                [&](int k, size_t begin, size_t end) { spheres_closest_one<T, SM>(s, begin, end, p, k, tmin, best); });
         else
             spheres_closest<T, SM, CommonOrigin, false>(s, 0, s.sphere_count, p, tmin, best);
     }

@@ -137,6 +137,22 @@ template <class T, sphere_mode SM, bool CommonOrigin, bool Ties>
     }
 }
 
+// Spheres [begin, end) of a tree's leaf against ray k of the packet alone
+// (traverse_packet hands a box that few of its rays enter to them one by
+// one): the lane loops' arithmetic for that lane, so the same t and object.
+// (With a common origin every lane's origin is lane 0's.)
+template <class T, sphere_mode SM>
+[[gnu::always_inline]] inline void spheres_closest_one(const soa_scene<T>& s, size_t begin, size_t end,
+                                                       const packet<T>& p, int k, T tmin, packet_best<T>& best) {
+    for (size_t i = begin; i < end; ++i) {
+        const T fx = p.ox[k] - s.cx[i], fy = p.oy[k] - s.cy[i], fz = p.oz[k] - s.cz[i], rr = s.radius2[i];
+        const T c = sphere_c<T, SM>(fx, fy, fz, s.radius[i], rr);
+        best.template keep<true>(
+            k, sphere_t<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], best.a[k], best.inv_a[k], tmin),
+            index_t<T>(s.original[i]));
+    }
+}
+
 // One shadow ray against sphere j: is it hit with tmin < t < tmax?
 template <class T, sphere_mode SM>
 [[gnu::always_inline]] inline bool sphere_blocks(const soa_scene<T>& s, size_t j, const shadow_ray<T>& r, T tmin, T tmax) {

@@ -40,31 +40,72 @@ struct packet_slabs {
             iz[k] = slab_reciprocal(float(p.dz[k]));
         }
     }
-
-    // Does some ray k of the packet enter box b before best_t[k]?
-    template <class T>
-    [[gnu::always_inline]] bool opened(const bvh_box& b, const T* best_t) const {
-        int any = 0;
-        for (int k = 0; k < W; ++k) {
-            // best_t in float, rounded up a little: never below the true value.
-            float enter = 0, leave = float(best_t[k]) * slab_widen;
-            slab_axis(b.lo[0], b.hi[0], ox[k], ix[k], slab_widen, enter, leave);
-            slab_axis(b.lo[1], b.hi[1], oy[k], iy[k], slab_widen, enter, leave);
-            slab_axis(b.lo[2], b.hi[2], oz[k], iz[k], slab_widen, enter, leave);
-            any |= int(enter <= leave);
-        }
-        return any != 0;
-    }
 };
+
+// A box that at most this many rays of a packet enter is walked by those
+// rays one at a time (traverse_packet): deep in a big tree, where the
+// boxes are small, the packet's 32 lanes would mostly work for rays that
+// are not there.
+constexpr int packet_hand_off = 2;
+
+// Which rays k of the packet enter box b before best_t[k] (a bit each).
+template <class T>
+[[gnu::always_inline]] inline std::uint32_t rays_entering(const packet_slabs& slabs, const bvh_box& b, const T* best_t) {
+    std::uint32_t mask = 0;
+    for (int k = 0; k < W; ++k) {
+        float enter = 0, leave = float(best_t[k]) * slab_widen;
+        slab_axis(b.lo[0], b.hi[0], slabs.ox[k], slabs.ix[k], slab_widen, enter, leave);
+        slab_axis(b.lo[1], b.hi[1], slabs.oy[k], slabs.iy[k], slab_widen, enter, leave);
+        slab_axis(b.lo[2], b.hi[2], slabs.oz[k], slabs.iz[k], slab_widen, enter, leave);
+        mask |= enter <= leave ? std::uint32_t(1) << k : 0;
+    }
+    return mask;
+}
+
+// The near child of inner node n first onto the stack last (so it is
+// visited first), judged along direction d.
+[[gnu::always_inline]] inline void push_children(const bvh_tree& tree, const bvh_node& n, const float (&d)[3],
+                                                 std::uint32_t* stack, int& top) {
+    const bvh_box &l = tree.nodes[n.first].box, &r = tree.nodes[n.first + 1].box;
+    float towards = 0;  // > 0 when the left child lies further along d
+    for (int a = 0; a < 3; ++a) towards += ((l.lo[a] + l.hi[a]) - (r.lo[a] + r.hi[a])) * d[a];
+    stack[top++] = towards > 0 ? n.first : n.first + 1;
+    stack[top++] = towards > 0 ? n.first + 1 : n.first;
+}
+
+// The subtree of node `start` for ray k of the packet alone: its own slab
+// tests and near-first order; leaf_one(k, b, e) tests objects [b, e) for it.
+template <class T, class LeafOne>
+inline void traverse_one_lane(const bvh_tree& tree, std::uint32_t start, int k, const packet_slabs& slabs,
+                              const packet<T>& p, const T* best_t, LeafOne&& leaf_one) {
+    const float d[3] = {float(p.dx[k]), float(p.dy[k]), float(p.dz[k])};
+    std::uint32_t stack[256];
+    int top = 0;
+    stack[top++] = start;
+    while (top > 0) {
+        const bvh_node& n = tree.nodes[stack[--top]];
+        float enter = 0, leave = float(best_t[k]) * slab_widen;
+        slab_axis(n.box.lo[0], n.box.hi[0], slabs.ox[k], slabs.ix[k], slab_widen, enter, leave);
+        slab_axis(n.box.lo[1], n.box.hi[1], slabs.oy[k], slabs.iy[k], slab_widen, enter, leave);
+        slab_axis(n.box.lo[2], n.box.hi[2], slabs.oz[k], slabs.iz[k], slab_widen, enter, leave);
+        if (!(enter <= leave)) continue;
+        if (n.count > 0) leaf_one(k, size_t(n.first), size_t(n.first) + n.count);
+        else push_children(tree, n, d, stack, top);
+    }
+}
 
 // Depth-first walk of a tree for the 32 rays of a packet. A node is
 // opened when some ray of the packet enters its box before that ray's
 // closest hit so far (best_t, updated by the leaves as they run); leaf(b, e)
-// tests objects [b, e). Children are visited near one first, judged along
-// the first ray's direction, so the closest hits come early and the far
-// child's box is then often passed by.
-template <class T, class Leaf>
-[[gnu::always_inline]] inline void traverse_packet(const bvh_tree& tree, const packet<T>& p, const T* best_t, Leaf&& leaf) {
+// tests objects [b, e) for every ray. Children are visited near one first,
+// judged along the first ray's direction, so the closest hits come early
+// and the far child's box is then often passed by. A node that at most
+// packet_hand_off rays enter is left to those rays one by one
+// (traverse_one_lane, leaf_one). Either way each ray meets every object
+// whose box it enters: the answers do not depend on which walk ran.
+template <class T, class Leaf, class LeafOne>
+[[gnu::always_inline]] inline void traverse_packet(const bvh_tree& tree, const packet<T>& p, const T* best_t, Leaf&& leaf,
+                                                   LeafOne&& leaf_one) {
     if (tree.nodes.empty()) return;
     const packet_slabs slabs(p);
     const float d0[3] = {float(p.dx[0]), float(p.dy[0]), float(p.dz[0])};
@@ -72,18 +113,16 @@ template <class T, class Leaf>
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
-        const bvh_node& n = tree.nodes[stack[--top]];
-        if (!slabs.opened(n.box, best_t)) continue;
-        if (n.count > 0) {
-            leaf(size_t(n.first), size_t(n.first) + n.count);
+        const std::uint32_t index = stack[--top];
+        const bvh_node& n = tree.nodes[index];
+        std::uint32_t rays = rays_entering(slabs, n.box, best_t);
+        if (rays == 0) continue;
+        if (__builtin_popcount(rays) <= packet_hand_off) {
+            for (; rays != 0; rays &= rays - 1) traverse_one_lane(tree, index, __builtin_ctz(rays), slabs, p, best_t, leaf_one);
             continue;
         }
-        const bvh_box &l = tree.nodes[n.first].box, &r = tree.nodes[n.first + 1].box;
-        float towards = 0;  // > 0 when the left child lies further along d0
-        for (int a = 0; a < 3; ++a) towards += ((l.lo[a] + l.hi[a]) - (r.lo[a] + r.hi[a])) * d0[a];
-        // Pushed last is visited first: the near child.
-        stack[top++] = towards > 0 ? n.first : n.first + 1;
-        stack[top++] = towards > 0 ? n.first + 1 : n.first;
+        if (n.count > 0) leaf(size_t(n.first), size_t(n.first) + n.count);
+        else push_children(tree, n, d0, stack, top);
     }
 }
 
