@@ -145,6 +145,21 @@ std::vector<ch10::composite_model> grid_parts(long copies, const ch08::aabb<doub
     return models;
 }
 
+// The two groups of the world's objects: the planes, outside the tree, and
+// the top level's instances.
+template <class T>
+struct world_groups {
+    int plane_count;
+    const ch03::object_intersector<T>& plane_hit;
+    const ch10::instance_tree<T>& top;
+    const ch10::model_intersector<T>& model_hit;
+
+    std::optional<hit_record<T>> hit(int group, const ray<T>& r, const interval<T>& range) const {
+        if (group == 0) return ch03::closest_hit(plane_count, plane_hit, r, range);
+        return ch10::closest_hit(top, model_hit, r, range);
+    }
+};
+
 template <class T>
 image render_scene(const program_options& opt, long& rays) {
     if (scene_option && level_option >= 0)
@@ -185,23 +200,28 @@ image render_scene(const program_options& opt, long& rays) {
 
     const ch10::instance_tree<T>& top = w.composites[size_t(w.top - 1)];
     const auto planes = object_dispatch(world, ch02::intersect_sphere<T>, ch04::intersect_plane<T>);
-    // The world's closest hit: the planes (scene objects 0 ..), then the instances.
-    // The planes go through chapter 03's loop (YOUR closest_hit), not a copy of it.
     const ch03::object_intersector<T> plane_hit = planes.intersector();
-    auto closest = [&](const ray<T>& r, interval<T> range, bool& on_plane) {
-        std::optional<hit_record<T>> best = ch03::closest_hit(planes.count(), plane_hit, r, range);
-        if (best) range.max = best->t;
-        on_plane = bool(best);
-        if (auto h = ch10::closest_hit(top, w.model_hit, r, range)) {
-            best = h;
-            on_plane = false;
-        }
+    // The world is two groups, and chapter 03's loop (YOUR closest_hit) picks
+    // the nearer: group 0 the planes (scene objects 0 .., that same loop over
+    // them), group 1 the instances (YOUR chapter 10 closest_hit). The loop
+    // numbers its hit by group, so each group's own object number (a plane's
+    // scene number, an instance's object in its model) is kept on the side.
+    const world_groups<T> groups{planes.count(), plane_hit, top, w.model_hit};
+    auto closest = [&groups](const ray<T>& r, const interval<T>& range, bool& on_plane) {
+        int inner[2] = {-1, -1};
+        const ch03::object_intersector<T> group = [&groups, &inner](int g, const ray<T>& ray_in, const interval<T>& within) {
+            auto h = groups.hit(g, ray_in, within);
+            if (h) inner[g] = h->object;
+            return h;
+        };
+        std::optional<hit_record<T>> best = ch03::closest_hit(2, group, r, range);
+        if (best) on_plane = best->object == 0, best->object = inner[best->object];
         return best;
     };
     std::atomic<long> shadow_rays{0};
     const ch06::occlusion_test<T> occluded = [&](const ray<T>& r, const interval<T>& range) {
         shadow_rays.fetch_add(1, std::memory_order_relaxed);
-        if (ch03::closest_hit(planes.count(), plane_hit, r, range)) return true;
+        if (groups.hit(0, r, range)) return true;
         return ch10::any_hit(top, w.model_hit, r, range);
     };
     const long model_objects = w.shapes.object_count();
