@@ -27,8 +27,8 @@ constexpr float slab_widen = 1.0f + 4 * std::numeric_limits<float>::epsilon();
 // The packet's rays in float, as the slab tests of traverse_packet use
 // them, with the rule above: the near face and the NaN-safe updates are
 // selects, so the loop over the 32 lanes is still vectorised (blends where
-// the stand-in 1e30 had min and max; 3-5% slower on rt-bench's scenes, not
-// the half of an earlier measurement under load).
+// the stand-in 1e30 had min and max: 3-5% slower in a quiet scratch timing
+// of this walk, not the half an earlier rt-bench run under load read).
 struct packet_slabs {
     alignas(64) float ox[W], oy[W], oz[W], ix[W], iy[W], iz[W];
 

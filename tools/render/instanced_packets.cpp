@@ -57,7 +57,7 @@ struct ray_packet {
 // What each ray has found so far. t is shared by every level of the walk
 // (it means the same in every space); the rest (material, normal, point)
 // is in the space of the object whose walk last wrote it, and is brought
-// out one level each time a walk returns (walk_object).
+// out one level each time an instance's walk returns (object_walk::visit_instances).
 struct packet_hits {
     alignas(64) double t[W];
     int material[W];
@@ -81,23 +81,8 @@ struct packet_slabs {
 
     static constexpr double widen = 1 + 8 * std::numeric_limits<double>::epsilon();
 
-    // Does some ray k enter box b between 0 and its closest hit so far?
-    [[gnu::always_inline]] bool opened(const bvh_box& b, const double* best_t) const {
-        const double lx = b.lo[0], ly = b.lo[1], lz = b.lo[2], hx = b.hi[0], hy = b.hi[1], hz = b.hi[2];
-        int any = 0;
-        for (int k = 0; k < W; ++k) {
-            double enter = 0, leave = best_t[k];
-            slab_axis(lx, hx, ox[k], ix[k], widen, enter, leave);
-            slab_axis(ly, hy, oy[k], iy[k], widen, enter, leave);
-            slab_axis(lz, hz, oz[k], iz[k], widen, enter, leave);
-            any |= int(enter <= leave);
-        }
-        return any != 0;
-    }
-
-    // The same for a box the walk is about to test a leaf's triangles in:
-    // which rays enter it (a triangle is tested one ray at a time).
-    std::uint32_t entering(const bvh_box& b, const double* best_t) const {
+    // Which rays k enter box b between 0 and their closest hit so far (a bit each).
+    [[gnu::always_inline]] std::uint32_t entering(const bvh_box& b, const double* best_t) const {
         std::uint32_t mask = 0;
         for (int k = 0; k < W; ++k) {
             double enter = 0, leave = best_t[k];
@@ -134,7 +119,7 @@ public:
     std::uint32_t run(bool test_root) {
         const bvh_tree& tree = level_.tree;
         if (tree.nodes.empty()) return 0;
-        if (test_root && !slabs_.opened(tree.nodes[0].box, hits_.t)) return 0;
+        if (test_root && slabs_.entering(tree.nodes[0].box, hits_.t) == 0) return 0;
         walk_tree();
         return finish();
     }
@@ -150,7 +135,7 @@ private:
         else push_children(root, d0, stack, top);
         while (top > 0) {
             const bvh_node& n = tree.nodes[stack[--top]];
-            if (!slabs_.opened(n.box, hits_.t)) continue;
+            if (slabs_.entering(n.box, hits_.t) == 0) continue;
             if (n.count > 0) leaf(n);
             else push_children(n, d0, stack, top);
         }
