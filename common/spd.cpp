@@ -1,6 +1,7 @@
 // spd.cpp — the three Standard Procedural Databases (see spd.hpp).
 #include "spd.hpp"
 
+#include "big_array.hpp"
 #include "render.hpp"  // for_each_row: the project's thread pool
 
 #include <algorithm>
@@ -415,6 +416,9 @@ spd_counts spd_generate(spd_database db, int size, scene<double>& into, const st
         const size_t first = into.spheres.size();
         const int ground = materials.at(0), flake_material = materials.at(1);
         into.planes.push_back({ground_point, ground_normal, ground});
+        // 1.9 GB at size 8: in 2 MB pages, mapped with 3,000 faults, not 500,000 (big_array.hpp).
+        into.spheres.reserve(first + flake_count(size));
+        advise_huge_pages(into.spheres.data() + first, flake_count(size) * sizeof(sphere<double>));
         into.spheres.resize(first + flake_count(size));
         generate_balls_parallel(size, into.spheres.data() + first, flake_material);
         return spd_expected_counts(db, size);

@@ -5,8 +5,9 @@
 // (nL, nR) costs about   1 + (area_L * nL + area_R * nR) / area
 // object tests per ray, against n for a leaf. Candidate splits are the
 // boundaries between 16 equal bins of the objects' centres along the
-// widest axis; one pass counts each bin's objects and grows its box, a
-// sweep from each side then prices all 15 splits.
+// widest axis (fewer for a node of fewer than 16 objects); one pass counts
+// each bin's objects and grows its box, a sweep from each side then prices
+// all 15 splits.
 #include "bvh_build.hpp"
 
 #include "common/render.hpp"
@@ -14,16 +15,18 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <mutex>
+#include <stdexcept>
 
 namespace rt::render_tool {
 
 namespace {
 
-constexpr int bins = 16;
+constexpr int max_bins = 16;
 constexpr size_t min_leaf = 4;
 constexpr size_t max_sah_depth = 100;
 constexpr size_t parallel_bin_threshold = size_t(1) << 18;  // bigger nodes bin in parallel chunks
@@ -53,25 +56,6 @@ void centre(const record& r, float c[3]) {
     for (int a = 0; a < 3; ++a) c[a] = 0.5f * (r.box.lo[a] + r.box.hi[a]);
 }
 
-// What one pass over a range learns: per bin, its objects' box, their
-// centres' box and their number.
-struct bin_stats {
-    std::array<bvh_box, bins> box, centres;
-    std::array<size_t, bins> count{};
-    bin_stats() { box.fill(empty_box()), centres.fill(empty_box()); }
-    void merge(const bin_stats& o) {
-        for (int i = 0; i < bins; ++i) grow(box[i], o.box[i]), grow(centres[i], o.centres[i]), count[i] += o.count[i];
-    }
-};
-
-// Which bin a record's centre falls in, along `axis`.
-struct binner {
-    int axis;
-    float low, scale;
-    int of(float centre) const { return std::clamp(int((centre - low) * scale), 0, bins - 1); }
-    int operator()(const record& r) const { return of(0.5f * (r.box.lo[axis] + r.box.hi[axis])); }
-};
-
 // Four floats, gcc's vector extension (SSE, part of every x86-64): a
 // record's low corner and its high corner each load as one, so the pass
 // below grows a bin's box and its centres' box with four instructions
@@ -80,43 +64,71 @@ struct binner {
 // The selects are std::min's and std::max's (b < a ? b : a), so the bins,
 // and the tree, are the same bit for bit as with the scalar grow().
 typedef float f4 __attribute__((vector_size(16)));
+constexpr float inf_f = std::numeric_limits<float>::infinity();
+constexpr f4 up4 = {inf_f, inf_f, inf_f, inf_f}, down4 = {-inf_f, -inf_f, -inf_f, -inf_f};
+
+// One bin: its objects' box and their centres' box.
 struct f4_bin {
-    f4 lo, hi, centre_lo, centre_hi;
+    f4 lo = up4, hi = down4, centre_lo = up4, centre_hi = down4;
+    void grow(const f4_bin& o) {
+        lo = o.lo < lo ? o.lo : lo, hi = hi < o.hi ? o.hi : hi;
+        centre_lo = o.centre_lo < centre_lo ? o.centre_lo : centre_lo;
+        centre_hi = centre_hi < o.centre_hi ? o.centre_hi : centre_hi;
+    }
+    bvh_box box() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
+    bvh_box centres() const { return {{centre_lo[0], centre_lo[1], centre_lo[2]}, {centre_hi[0], centre_hi[1], centre_hi[2]}}; }
+};
+
+// What one pass over a range learns: per bin, its objects' box, their
+// centres' box and their number. A node of n objects uses min(n, 16) bins:
+// near the leaves, where most nodes are and each holds a few objects, the
+// cost of a split is its fixed work per bin (starting, merging and sweeping
+// them), and 16 bins for 6 objects would be mostly empty.
+struct bin_stats {
+    int used;
+    std::array<f4_bin, max_bins> bin;
+    std::array<size_t, max_bins> count;
+    explicit bin_stats(int bins_used) : used(bins_used) {
+        for (int i = 0; i < used; ++i) bin[size_t(i)] = f4_bin{}, count[size_t(i)] = 0;
+    }
+    void merge(const bin_stats& o) {
+        for (int i = 0; i < used; ++i) bin[size_t(i)].grow(o.bin[size_t(i)]), count[size_t(i)] += o.count[size_t(i)];
+    }
+};
+
+// Which bin a record's centre falls in, along `axis`.
+struct binner {
+    int axis, bins;
+    float low, scale;
+    int of(float centre) const { return std::clamp(int((centre - low) * scale), 0, bins - 1); }
+    int operator()(const record& r) const { return of(0.5f * (r.box.lo[axis] + r.box.hi[axis])); }
 };
 
 void bin_range(const record* r, size_t n, const binner& which, bin_stats& s) {
-    const float inf = std::numeric_limits<float>::infinity();
-    const f4 up = {inf, inf, inf, inf}, down = -up;
-    std::array<f4_bin, bins> acc;
-    acc.fill(f4_bin{up, down, up, down});
+    bin_stats acc(which.bins);  // local: the compiler need not fear that writing it changes the records
     for (size_t i = 0; i < n; ++i) {
         f4 lo, hi;
         std::memcpy(&lo, r[i].box.lo, sizeof lo);  // lo[0..2], hi[0]
         std::memcpy(&hi, r[i].box.hi, sizeof hi);  // hi[0..2], id
         const f4 c = 0.5f * (lo + hi);             // lanes 0..2: centre(), bit for bit
         const auto b = size_t(which.of(c[which.axis]));
-        f4_bin& a = acc[b];
+        f4_bin& a = acc.bin[b];
         a.lo = lo < a.lo ? lo : a.lo, a.hi = a.hi < hi ? hi : a.hi;
         a.centre_lo = c < a.centre_lo ? c : a.centre_lo, a.centre_hi = a.centre_hi < c ? c : a.centre_hi;
-        ++s.count[b];
+        ++acc.count[b];
     }
-    for (size_t b = 0; b < size_t(bins); ++b)
-        for (int k = 0; k < 3; ++k) {
-            s.box[b].lo[k] = std::min(s.box[b].lo[k], acc[b].lo[k]), s.box[b].hi[k] = std::max(s.box[b].hi[k], acc[b].hi[k]);
-            s.centres[b].lo[k] = std::min(s.centres[b].lo[k], acc[b].centre_lo[k]);
-            s.centres[b].hi[k] = std::max(s.centres[b].hi[k], acc[b].centre_hi[k]);
-        }
+    s.merge(acc);
 }
 
 // The same, split into chunks over the thread pool for big ranges.
 bin_stats bin_all(const record* r, size_t n, const binner& which) {
-    bin_stats total;
+    bin_stats total(which.bins);
     if (n < parallel_bin_threshold) {
         bin_range(r, n, which, total);
         return total;
     }
     const int chunks = 4 * render_threads();
-    std::vector<bin_stats> part(static_cast<size_t>(chunks));
+    std::vector<bin_stats> part(static_cast<size_t>(chunks), bin_stats(which.bins));
     for_each_row(chunks, [&](int c) {
         const size_t from = n * size_t(c) / size_t(chunks), to = n * size_t(c + 1) / size_t(chunks);
         bin_range(r + from, to - from, which, part[size_t(c)]);
@@ -169,6 +181,36 @@ void bounds_of(const record* r, size_t n, bvh_box& box, bvh_box& centres) {
     }
 }
 
+// Where nodes go. The tree's array is sized at the start for the most
+// nodes it can need: a tree over n objects, each leaf holding at least one,
+// has at most 2n - 1 nodes, plus what the tasks' blocks leave unused (a
+// task's last block, fewer than task_block nodes; at most 4n / task_size + 2
+// tasks: each is a child of a node of task_size objects or more, and there
+// are at most 2n / task_size such nodes). That is address space only: the
+// pages of a big_vector are mapped when first written, so only the nodes
+// made cost memory. Slots are handed out two at a time (a node's children
+// sit side by side); a task takes them from blocks of its own, so threads
+// never write each other's nodes, there is nothing to copy once the tasks
+// are done, and a subtree's nodes stay together in the order its walk
+// visits them. The unused end of a task's last block stays in the array,
+// unwritten and unreachable from the root.
+constexpr size_t task_block = 4096;
+
+class node_slots {
+public:
+    node_slots(std::atomic<size_t>& cursor, size_t block) : cursor_(cursor), block_(block) {}
+    // The first of two new neighbouring slots.
+    std::uint32_t pair() {
+        if (next_ + 2 > end_) next_ = cursor_.fetch_add(block_), end_ = next_ + block_;
+        next_ += 2;
+        return std::uint32_t(next_ - 2);
+    }
+
+private:
+    std::atomic<size_t>& cursor_;
+    size_t block_, next_ = 0, end_ = 0;
+};
+
 struct job {
     size_t begin, end;
     bvh_box box, centres;
@@ -178,12 +220,12 @@ struct job {
 
 class builder {
 public:
-    builder(std::vector<record>& records, int max_leaf) : rec_(records), max_leaf_(size_t(max_leaf)) {}
+    builder(big_vector<record>& records, int max_leaf) : rec_(records), max_leaf_(size_t(max_leaf)) {}
 
     // Builds j's subtree into `nodes` (j.slot already exists there). Ranges
     // below `defer_below` objects (other than the root) are not built but
     // appended to `deferred`.
-    void build(const job& root, std::vector<bvh_node>& nodes, size_t defer_below, std::vector<job>& deferred) {
+    void build(const job& root, bvh_node* nodes, node_slots& slots, size_t defer_below, std::vector<job>& deferred) {
         std::vector<job> stack{root};
         while (!stack.empty()) {
             job j = stack.back();
@@ -202,11 +244,9 @@ public:
                 ++leaves_;
                 continue;
             }
-            const auto first = std::uint32_t(nodes.size());
+            const std::uint32_t first = slots.pair();
             nodes[j.slot].first = first;
             nodes[j.slot].count = 0;
-            nodes.emplace_back();
-            nodes.emplace_back();
             left.slot = first, right.slot = first + 1;
             left.depth = right.depth = j.depth + 1;
             stack.push_back(right);
@@ -217,7 +257,7 @@ public:
     size_t leaves_ = 0, depth_ = 0;
 
 private:
-    std::vector<record>& rec_;
+    big_vector<record>& rec_;
     size_t max_leaf_;
 
     // Splits j by the SAH; false when a leaf is cheaper (and allowed).
@@ -242,22 +282,23 @@ private:
             if (n <= max_leaf_) return false;
             return halve(j, left, right);
         }
-        const binner which{axis, j.centres.lo[axis], float(bins) * 0.99999f / extent};
+        const int bins = int(std::min<size_t>(max_bins, n));
+        const binner which{axis, bins, j.centres.lo[axis], float(bins) * 0.99999f / extent};
         const bin_stats s = bin_all(r, n, which);
         // Sweep: the box and count left of each boundary, then right of it.
-        std::array<double, bins> left_cost{};
-        bvh_box b = empty_box();
+        std::array<double, max_bins> left_cost;
+        f4_bin b;
         size_t count = 0;
         for (int i = 0; i < bins - 1; ++i) {
-            grow(b, s.box[size_t(i)]), count += s.count[size_t(i)];
-            left_cost[size_t(i)] = area(b) * double(count);
+            b.grow(s.bin[size_t(i)]), count += s.count[size_t(i)];
+            left_cost[size_t(i)] = area(b.box()) * double(count);
         }
         double best = std::numeric_limits<double>::infinity();
         int best_split = -1;
-        b = empty_box(), count = 0;
+        b = f4_bin{}, count = 0;
         for (int i = bins - 1; i > 0; --i) {
-            grow(b, s.box[size_t(i)]), count += s.count[size_t(i)];
-            const double cost = left_cost[size_t(i - 1)] + area(b) * double(count);
+            b.grow(s.bin[size_t(i)]), count += s.count[size_t(i)];
+            const double cost = left_cost[size_t(i - 1)] + area(b.box()) * double(count);
             if (count < n && count > 0 && cost < best) best = cost, best_split = i;
         }
         const double parent = area(j.box);
@@ -265,12 +306,10 @@ private:
         if (n <= max_leaf_ && (best_split < 0 || leaf_cheaper)) return false;
         if (best_split < 0) return halve(j, left, right);
         record* mid = parallel_partition(r, n, [&](const record& x) { return which(x) < best_split; });
-        left = job{j.begin, j.begin + size_t(mid - r), empty_box(), empty_box(), 0, 0};
-        right = job{left.end, j.end, empty_box(), empty_box(), 0, 0};
-        for (int i = 0; i < bins; ++i) {
-            job& side = i < best_split ? left : right;
-            grow(side.box, s.box[size_t(i)]), grow(side.centres, s.centres[size_t(i)]);
-        }
+        f4_bin left_bins, right_bins;
+        for (int i = 0; i < bins; ++i) (i < best_split ? left_bins : right_bins).grow(s.bin[size_t(i)]);
+        left = job{j.begin, j.begin + size_t(mid - r), left_bins.box(), left_bins.centres(), 0, 0};
+        right = job{left.end, j.end, right_bins.box(), right_bins.centres(), 0, 0};
         return true;
     }
 
@@ -289,69 +328,55 @@ private:
 
 }  // namespace
 
-bvh_tree build_bvh(const std::vector<bvh_box>& boxes, int max_leaf) {
+bvh_tree build_bvh(size_t count, const std::function<bvh_box(size_t)>& box_of, int max_leaf) {
     stopwatch clock;
     bvh_tree tree;
-    if (boxes.empty()) return tree;
-    // The records and the root's bounds, in chunks on every core.
-    std::vector<record> rec(boxes.size());
+    if (count == 0) return tree;
+    // Node numbers and object numbers are 32-bit: room for 2 * count nodes.
+    if (count > (size_t(1) << 30)) throw std::length_error("build_bvh: more than 2^30 objects in one tree");
+    // The records and the root's bounds, in chunks on every core (a
+    // big_vector is not written before this: its pages are first touched
+    // here, on both cores).
+    big_vector<record> rec(count);
     job root{0, rec.size(), empty_box(), empty_box(), 0, 0};
     {
         const int chunks = 4 * render_threads();
         std::mutex merge;
         for_each_row(chunks, [&](int c) {
             const size_t from = rec.size() * size_t(c) / size_t(chunks), to = rec.size() * size_t(c + 1) / size_t(chunks);
-            for (size_t i = from; i < to; ++i) rec[i] = {boxes[i], std::uint32_t(i), 0};
+            for (size_t i = from; i < to; ++i) rec[i] = {box_of(i), std::uint32_t(i), 0};
             bvh_box b, k;
             bounds_of(rec.data() + from, to - from, b, k);
             const std::lock_guard<std::mutex> lock(merge);
             grow(root.box, b), grow(root.centres, k);
         });
     }
-    tree.nodes.emplace_back();
+    // The nodes: address space for the most the tree can need, mapped only
+    // where nodes are written (node_slots).
+    const size_t most_tasks = 4 * count / task_size + 2;
+    tree.nodes.resize(2 * count + most_tasks * task_block);
+    std::atomic<size_t> cursor{1};  // nodes[0] is the root
 
     // The top of the tree, one node at a time with parallel binning; every
     // range below task_size is left for the second phase.
     builder top(rec, max_leaf);
     std::vector<job> tasks;
-    top.build(root, tree.nodes, task_size, tasks);
+    node_slots top_slots(cursor, 2);
+    top.build(root, tree.nodes.data(), top_slots, task_size, tasks);
 
-    // The subtrees, one task each, into their own node lists; then spliced
-    // in: a subtree's root replaces its slot, the rest are appended.
-    std::vector<std::vector<bvh_node>> parts(tasks.size());
+    // The subtrees, one task each, each writing its nodes into blocks of
+    // the same array that no other task writes.
     std::vector<size_t> leaves(tasks.size()), depths(tasks.size());
     for_each_row(int(tasks.size()), [&](int t) {
         builder b(rec, max_leaf);
+        node_slots slots(cursor, task_block);
         std::vector<job> none;
-        job j = tasks[size_t(t)];
-        j.slot = 0;
-        parts[size_t(t)].emplace_back();
-        b.build(j, parts[size_t(t)], 0, none);
-        leaves[size_t(t)] = b.leaves_, depths[size_t(t)] = tasks[size_t(t)].depth + b.depth_;
+        b.build(tasks[size_t(t)], tree.nodes.data(), slots, 0, none);
+        leaves[size_t(t)] = b.leaves_, depths[size_t(t)] = b.depth_;
     });
+    tree.nodes.resize(cursor);  // the end of the last block taken (nothing past it was written)
     tree.leaves = top.leaves_, tree.depth = top.depth_;
-    // Where each subtree's nodes go (its root replaces its slot, the rest
-    // are appended: local node i >= 1 goes to base + i), then the copies,
-    // one task each.
-    std::vector<size_t> base(tasks.size());
-    size_t total = tree.nodes.size();
-    for (size_t t = 0; t < tasks.size(); ++t) {
-        base[t] = total - 1;
-        total += parts[t].size() - 1;
-        tree.leaves += leaves[t], tree.depth = std::max(tree.depth, depths[t]);
-    }
-    tree.nodes.reserve(total);  // exactly: a tree of 48 million spheres has a gigabyte of nodes
-    tree.nodes.resize(total);
-    for_each_row(int(tasks.size()), [&](int ti) {
-        const auto t = size_t(ti);
-        std::vector<bvh_node>& part = parts[t];
-        for (size_t i = 0; i < part.size(); ++i) {
-            bvh_node n = part[i];
-            if (n.count == 0) n.first += std::uint32_t(base[t]);
-            tree.nodes[i == 0 ? tasks[t].slot : base[t] + i] = n;
-        }
-        std::vector<bvh_node>().swap(part);
-    });
+    for (size_t t = 0; t < tasks.size(); ++t) tree.leaves += leaves[t], tree.depth = std::max(tree.depth, depths[t]);
     tree.order.resize(rec.size());
     const int chunks = 4 * render_threads();
     for_each_row(chunks, [&](int c) {
@@ -367,7 +392,7 @@ namespace {
 // Writes the wide node for binary inner node `b` (and, depth first, the
 // wide nodes below it); returns its index. Children are numbered after
 // their parent, so a ray's walk reads the array mostly forwards.
-std::uint32_t collapse(const std::vector<bvh_node>& bin, std::uint32_t b, std::vector<bvh_wide_node>& out) {
+std::uint32_t collapse(const big_vector<bvh_node>& bin, std::uint32_t b, big_vector<bvh_wide_node>& out) {
     // Open the largest inner child until there are `wide` of them: the
     // largest box is the one most rays enter, so it is the one most worth
     // replacing by its children's tighter boxes.
@@ -434,7 +459,7 @@ bvh_wide_tree collapse_to_wide(bvh_tree&& binary) {
             collapse(binary.nodes, 0, tree.nodes);
         }
     }
-    std::vector<bvh_node>().swap(binary.nodes);
+    big_vector<bvh_node>().swap(binary.nodes);
     tree.build_seconds = binary.build_seconds + clock.seconds();
     return tree;
 }

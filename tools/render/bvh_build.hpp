@@ -10,13 +10,21 @@
 //     indices into a far-away array, so each pass reads memory in order;
 //   * big nodes bin their objects in parallel chunks, and once a node is
 //     small enough its whole subtree is one task; tasks run on the
-//     project's thread pool (rt::for_each_row).
+//     project's thread pool (rt::for_each_row), each writing its nodes
+//     straight into the tree's array;
+//   * the big arrays are big_vectors (common/big_array.hpp): in 2 MB pages,
+//     and not zeroed before the build writes them.
 // The boxes are the caller's: they must enclose each object as the renderer
 // will test it (in float, rounding included), see fast_path.cpp.
 #pragma once
 
+#include "common/big_array.hpp"
+
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <limits>
 #include <vector>
 
 namespace rt::render_tool {
@@ -24,6 +32,22 @@ namespace rt::render_tool {
 struct bvh_box {
     float lo[3], hi[3];
 };
+
+// The float box around the double box [lo, hi] widened by pad on every side:
+// each corner rounded outwards (the largest float at or below lo - pad, the
+// smallest at or above hi + pad), so the float box holds the double one
+// whatever the rounding. V: anything indexed [0..2] (vec3d, double[3]).
+inline float float_at_or_below(double x) {
+    const float f = float(x);  // the nearest float: one step down if it landed above x
+    return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+inline float float_at_or_above(double x) { return -float_at_or_below(-x); }
+template <class V>
+bvh_box float_box_around(const V& lo, const V& hi, double pad) {
+    bvh_box b;
+    for (int a = 0; a < 3; ++a) b.lo[a] = float_at_or_below(lo[a] - pad), b.hi[a] = float_at_or_above(hi[a] + pad);
+    return b;
+}
 
 struct bvh_node {
     bvh_box box;
@@ -33,16 +57,25 @@ struct bvh_node {
 static_assert(sizeof(bvh_node) == 32, "two nodes per cache line");
 
 struct bvh_tree {
-    std::vector<bvh_node> nodes;        // nodes[0] is the root (when there is any object)
-    std::vector<std::uint32_t> order;   // the objects, leaf by leaf
+    // nodes[0] is the root (when there is any object). A tree of more than
+    // 2^17 objects, built by tasks on several cores, may hold unused slots
+    // between the tasks' nodes: walk it from the root, not as a list.
+    big_vector<bvh_node> nodes;
+    big_vector<std::uint32_t> order;   // the objects, leaf by leaf
     double build_seconds = 0;
     size_t leaves = 0, depth = 0;
     size_t bytes() const { return nodes.size() * sizeof(bvh_node) + order.size() * sizeof(std::uint32_t); }
 };
 
-// Builds the tree over `boxes` (object i has box i). max_leaf: the largest
-// leaf; smaller leaves are made whenever the SAH says splitting is cheaper.
-bvh_tree build_bvh(const std::vector<bvh_box>& boxes, int max_leaf = 8);
+// Builds the tree over `count` objects, object i in the box box_of(i)
+// (asked once per object, from every core: it must be safe to call from
+// several threads at once; the boxes go straight into the build's records,
+// with no array of their own). max_leaf: the largest leaf; smaller leaves
+// are made whenever the SAH says splitting is cheaper.
+bvh_tree build_bvh(size_t count, const std::function<bvh_box(size_t)>& box_of, int max_leaf = 8);
+inline bvh_tree build_bvh(const std::vector<bvh_box>& boxes, int max_leaf = 8) {
+    return build_bvh(boxes.size(), [&](size_t i) { return boxes[i]; }, max_leaf);
+}
 
 // The same tree with four children per node: each wide node is a binary
 // node and its children and grandchildren, opened largest box first until
@@ -63,8 +96,8 @@ struct alignas(64) bvh_wide_node {
 static_assert(sizeof(bvh_wide_node) == 128, "two cache lines");
 
 struct bvh_wide_tree {
-    std::vector<bvh_wide_node> nodes;   // nodes[0] is the root (when there is any object)
-    std::vector<std::uint32_t> order;   // the objects, leaf by leaf (the binary tree's order)
+    big_vector<bvh_wide_node> nodes;   // nodes[0] is the root (when there is any object)
+    big_vector<std::uint32_t> order;   // the objects, leaf by leaf (the binary tree's order)
     double build_seconds = 0;           // the binary build and the collapse
     size_t leaves = 0, depth = 0;       // the binary tree's
     size_t bytes() const { return nodes.size() * sizeof(bvh_wide_node) + order.size() * sizeof(std::uint32_t); }

@@ -104,10 +104,12 @@ struct soa_scene {
     size_t sphere_count = 0, plane_count = 0, triangle_count = 0;
     // Each array is padded to a multiple of W with NaN entries, which never
     // hit, so the shadow-ray loop can run over whole groups of W objects.
-    std::vector<T> cx, cy, cz, radius, radius2;
-    std::vector<T> px, py, pz, nx, ny, nz;  // planes: a point and the unit normal
-    std::vector<T> ax, ay, az, e1x, e1y, e1z, e2x, e2y, e2z;  // triangles: corner a, edges b-a, c-a
-    std::vector<T> bx, by, bz, br2;  // a sphere around each triangle (radius squared), to skip it cheaply
+    // (big_vector: 48 million spheres are five arrays of 200-400 MB, each
+    // sized once and written in place on every core, common/big_array.hpp.)
+    big_vector<T> cx, cy, cz, radius, radius2;
+    big_vector<T> px, py, pz, nx, ny, nz;  // planes: a point and the unit normal
+    big_vector<T> ax, ay, az, e1x, e1y, e1z, e2x, e2y, e2z;  // triangles: corner a, edges b-a, c-a
+    big_vector<T> bx, by, bz, br2;  // a sphere around each triangle (radius squared), to skip it cheaply
     // How much every box is widened (build_trees) and every cull sphere too:
     // 1e-6 of the scene's magnitude.
     double box_pad = 0;
@@ -127,7 +129,7 @@ struct soa_scene {
     // and single rays are three times faster there).
     bvh_tree sphere_tree;
     bvh_wide_tree triangle_tree;
-    std::vector<std::int64_t> original;
+    big_vector<std::int64_t> original;
     // The scene's triangles and planes, for the rare exact decisions
     // (corners and plane_normal below).
     const std::vector<triangle<double>>* source_triangles = nullptr;
@@ -154,21 +156,26 @@ struct soa_scene {
         source_triangles = &s.triangles;
         source_planes = &s.planes;
         if (tree) build_trees(s);
+        for (auto* v : {&cx, &cy, &cz, &radius, &radius2}) v->reserve(padded(sphere_count));
+        for (auto* v : {&px, &py, &pz, &nx, &ny, &nz}) v->reserve(padded(plane_count));
+        for (auto* v : {&ax, &ay, &az, &e1x, &e1y, &e1z, &e2x, &e2y, &e2z, &bx, &by, &bz, &br2})
+            v->reserve(padded(triangle_count));
         add_spheres(s.spheres);
         for (const auto& x : s.planes) add_plane(x);
         for (size_t j = 0; j < triangle_count; ++j) add_triangle(s.triangles[tree ? triangle_tree.order[j] : j]);
         for (auto* v : {&cx, &cy, &cz, &radius, &radius2, &px, &py, &pz, &nx, &ny, &nz, &ax, &ay, &az, &e1x, &e1y,
                         &e1z, &e2x, &e2y, &e2z, &bx, &by, &bz, &br2})
-            // At least leaf_lanes of padding: a tree's leaf is tested leaf_lanes
-            // objects at a time, past its end (those lanes are dropped).
-            for (size_t k = 0; k < size_t(leaf_lanes) || v->size() % W; ++k)
-                v->push_back(std::numeric_limits<T>::quiet_NaN());
+            v->resize(padded(v->size()), std::numeric_limits<T>::quiet_NaN());
         if (tree) number_in_scene_order();
     }
 
-    // The spheres in leaf order (or the scene's), on every core: 48 million
-    // of them are five arrays of 200-400 MB, written in place rather than
-    // grown (each slot is written once, by one thread).
+    // The length of an array of n objects with its NaN padding: at least
+    // leaf_lanes entries (a tree's leaf is tested leaf_lanes objects at a
+    // time, past its end; those lanes are dropped), up to a multiple of W.
+    static size_t padded(size_t n) { return (n + size_t(leaf_lanes) + W - 1) / W * W; }
+
+    // The spheres in leaf order (or the scene's), on every core, each slot
+    // written once, by one thread.
     void add_spheres(const std::vector<sphere<double>>& spheres) {
         for (auto* v : {&cx, &cy, &cz, &radius, &radius2}) v->resize(sphere_count);
         for_each_chunk(sphere_count, [&](size_t j) {
@@ -223,9 +230,9 @@ struct soa_scene {
     // original[i]: the scene's number of stored object i (spheres, then
     // planes, then triangles, each kind in its tree's leaf order).
     void number_in_scene_order() {
+        original.reserve(sphere_count + plane_count + triangle_count);
         original.resize(sphere_count);
         for_each_chunk(sphere_count, [&](size_t j) { original[j] = std::int64_t(sphere_tree.order[j]); });
-        original.reserve(sphere_count + plane_count + triangle_count);
         for (size_t j = 0; j < plane_count; ++j) original.push_back(std::int64_t(sphere_count + j));
         for (size_t j = 0; j < triangle_count; ++j)
             original.push_back(std::int64_t(sphere_count + plane_count + triangle_tree.order[j]));
@@ -238,26 +245,13 @@ struct soa_scene {
     // float can then only let through too much, never drop a hit, so the
     // tree gives the same closest object and t as brute force.
     void build_trees(const scene<double>& s) {
-        const double pad = box_pad;
-        auto box_of = [&](vec3d lo, vec3d hi) {
-            bvh_box b;
-            for (int a = 0; a < 3; ++a) {
-                b.lo[a] = std::nextafter(float(lo[a] - pad), -infinity<float>);
-                b.hi[a] = std::nextafter(float(hi[a] + pad), infinity<float>);
-            }
-            return b;
-        };
-        std::vector<bvh_box> boxes(s.spheres.size());
-        for_each_chunk(boxes.size(), [&](size_t i) {
+        sphere_tree = build_bvh(s.spheres.size(), [&](size_t i) {
             const auto& x = s.spheres[i];
-            boxes[i] = box_of(x.center - vec3d(x.radius), x.center + vec3d(x.radius));
+            return float_box_around(x.center - vec3d(x.radius), x.center + vec3d(x.radius), box_pad);
         });
-        sphere_tree = build_bvh(boxes);
-        boxes.assign(s.triangles.size(), bvh_box{});
-        for (size_t i = 0; i < boxes.size(); ++i) {
+        triangle_tree = collapse_to_wide(build_bvh(s.triangles.size(), [&](size_t i) {
             const auto& x = s.triangles[i];
-            boxes[i] = box_of(glm::min(x.a, glm::min(x.b, x.c)), glm::max(x.a, glm::max(x.b, x.c)));
-        }
-        triangle_tree = collapse_to_wide(build_bvh(boxes));
+            return float_box_around(glm::min(x.a, glm::min(x.b, x.c)), glm::max(x.a, glm::max(x.b, x.c)), box_pad);
+        }));
     }
 };

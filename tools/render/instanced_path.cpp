@@ -31,13 +31,7 @@ vec3d apply(const affine_transform& t, const vec3d& p) { return t.linear * p + t
 bvh_box to_float_box(const box3& b) {
     double magnitude = 0;
     for (int a = 0; a < 3; ++a) magnitude = std::max({magnitude, std::fabs(b.lo[a]), std::fabs(b.hi[a])});
-    const double pad = 1e-7 * magnitude;
-    bvh_box out;
-    for (int a = 0; a < 3; ++a) {
-        out.lo[a] = std::nextafter(float(b.lo[a] - pad), -infinity<float>);
-        out.hi[a] = std::nextafter(float(b.hi[a] + pad), infinity<float>);
-    }
-    return out;
+    return float_box_around(b.lo, b.hi, 1e-7 * magnitude);
 }
 
 box3 of(const bvh_box& b) {
