@@ -1,4 +1,5 @@
 // Tests of the shared core: the conventions every chapter relies on.
+#include "common/big_array.hpp"
 #include "common/camera.hpp"
 #include "common/error_metrics.hpp"
 #include "common/hit_record.hpp"
@@ -14,7 +15,9 @@
 
 #include "test_support.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <atomic>
 #include <cstdio>
 #include <limits>
@@ -349,4 +352,23 @@ TEST_CASE("compare_noisy_images: two draws of one expectation match, a biased on
     INFO("identical pictures match; a constant offset (no noise to explain it) does not");
     CHECK(rt::compare_noisy_images(reference, reference, tol).within());
     CHECK(std::fabs(rt::two_sided_normal_threshold(0.05) - 1.959964) < 1e-5);
+}
+
+TEST_CASE("big_vector holds what is written, in huge pages or not, and advise_huge_pages takes any range") {
+    // 12 MB: above big_allocator's 8 MB, so the block is advised before the
+    // first write; each element written once, as the build and the
+    // renderer's arrays are.
+    big_vector<std::uint64_t> v(size_t(3) << 19);
+    for (size_t i = 0; i < v.size(); ++i) v[i] = i * 2654435761u;
+    bool same = true;
+    for (size_t i = 0; i < v.size(); ++i) same = same && v[i] == i * 2654435761u;
+    CHECK(same);
+    v.resize(v.size() + 5, 7);  // growing with a value writes it, as std::vector does
+    CHECK(v.back() == 7);
+    // Ranges that hold no whole page, unaligned ones, and an empty one: the
+    // advice is rounded inwards and the memory is left as it was.
+    std::vector<char> bytes(3 * 4096 + 5, 'x');
+    for (size_t from : {size_t(0), size_t(1), size_t(4095)})
+        for (size_t n : {size_t(0), size_t(1), size_t(4096), size_t(2 * 4096 + 3)}) advise_huge_pages(bytes.data() + from, n);
+    CHECK(std::count(bytes.begin(), bytes.end(), 'x') == std::ptrdiff_t(bytes.size()));
 }

@@ -7,7 +7,8 @@
 set(fuzzer "${WORK_DIR}/scene_fuzzer")
 set(sources "${SOURCE_DIR}/tests/fuzz/scene_fuzz.cpp" "${SOURCE_DIR}/common/scene_file.cpp"
             "${SOURCE_DIR}/common/spd.cpp" "${SOURCE_DIR}/common/obj_mesh.cpp"
-            "${SOURCE_DIR}/common/instances.cpp" "${SOURCE_DIR}/common/render.cpp")
+            "${SOURCE_DIR}/common/instances.cpp" "${SOURCE_DIR}/common/render.cpp"
+            "${SOURCE_DIR}/common/big_array.cpp")
 set(rebuild FALSE)
 foreach(f IN LISTS sources ITEMS "${SOURCE_DIR}/common/scene_file.hpp" "${SOURCE_DIR}/common/scene.hpp"
                                  "${SOURCE_DIR}/common/camera.hpp" "${SOURCE_DIR}/common/shapes.hpp"
