@@ -364,7 +364,7 @@ void feature_table(int size) {
                         {"+ a plane", true, 0, false},
                         {"+ a plane + 64 triangles", true, 64, false},
                         {"+ a plane + 64 triangles + 2 lights", true, 64, true}};
-    double base = 0;
+    double base = 0, unlit = 0;
     for (const row& r : rows) {
         const scene_description d = mixed_scene(64, r.plane, r.triangles, r.lights, size);
         const render_figures fast = time_fast(d, size);
@@ -373,6 +373,16 @@ void feature_table(int size) {
         std::printf("   %-36s | %9.2f | %12.1f | %11.2fx | %12.2f | %8.1fx\n", r.name, fast.seconds * 1e3, fast.mrays(),
                     fast.seconds / base, general.mrays(), fast.mrays() / general.mrays());
         std::fflush(stdout);
+        if (!r.lights) {
+            unlit = fast.seconds;
+        } else {
+            // What each light adds (its shadow rays and its share of the
+            // shading), against the same scene's render without lights.
+            const double lights = double(d.world.lights.size());
+            std::printf("   one light's shadow rays and shading: %.2fx the render without lights ((%.2f - %.2f) / %.0f ms "
+                        "against %.2f; target at most 1x)\n",
+                        (fast.seconds - unlit) / lights / unlit, fast.seconds * 1e3, unlit * 1e3, lights, unlit * 1e3);
+        }
     }
 }
 

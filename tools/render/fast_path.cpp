@@ -90,10 +90,13 @@ struct context {
     scene_camera<T> camera;
     const scene<double>& world;
     T tmin;
+    std::vector<checker_axes> plane_axes;  // each plane's checker axes, found once (three normalisations each)
 
     context(const scene_description& d, int width, int height, bool tree)
         : soa(d.world, tree, magnitude(d)), camera(d.camera, width, height), world(d.world),
-          tmin(camera.primary_range().min) {}
+          tmin(camera.primary_range().min) {
+        for (const plane<double>& x : d.world.planes) plane_axes.push_back(checker_axes_of(x.normal));
+    }
 
     // The material of object o (the scene's number, as closest_hits answers)
     // at a hit point: a plane's checker follows the plane's own axes
@@ -101,7 +104,7 @@ struct context {
     material material_at_hit(size_t o, const vec3<T>& point) const {
         const material& m = world.materials[size_t(material_index(world, int(o)))];
         if (!m.checker || o < soa.sphere_count || o >= soa.sphere_count + soa.plane_count) return material_at(m, point);
-        return material_at(m, point, checker_axes_of(world.planes[o - soa.sphere_count].normal));
+        return material_at(m, point, plane_axes[o - soa.sphere_count]);
     }
 
     // The largest coordinate in the scene, the eye and the lights.
