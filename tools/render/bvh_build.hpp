@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <vector>
@@ -39,7 +40,20 @@ struct bvh_box {
 // whatever the rounding. V: anything indexed [0..2] (vec3d, double[3]).
 inline float float_at_or_below(double x) {
     const float f = float(x);  // the nearest float: one step down if it landed above x
-    return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+    // The step down, as std::nextafter(f, -infinity) but without a call or
+    // a branch (half the roundings land above, at random: 48 million
+    // spheres' boxes paid a mispredicted branch for every other corner).
+    // A float's bits, read as a signed integer, step down by one for a
+    // positive value and up by one for a negative one; zero steps from -0
+    // to minus the smallest subnormal. (f = +infinity steps to the largest
+    // float, still at or below x; NaN stays NaN through the comparison.)
+    const float from = f == 0.0f ? -0.0f : f;
+    std::int32_t bits;
+    std::memcpy(&bits, &from, sizeof bits);
+    bits += bits >= 0 ? -1 : 1;
+    float below;
+    std::memcpy(&below, &bits, sizeof below);
+    return double(f) > x ? below : f;
 }
 inline float float_at_or_above(double x) { return -float_at_or_below(-x); }
 template <class V>

@@ -63,7 +63,8 @@ struct packet_best {
     // Ties, as near and of a lower number. Brute force meets the objects in
     // the order of their numbers, so the nearer rule alone keeps the lowest
     // number at a tie; a tree meets them in its own order and asks for Ties
-    // (the numbers it passes are then the scene's own, soa_scene::original),
+    // (the numbers it passes are then the scene's own, soa_scene::sphere_number
+    // and triangle_number),
     // so the tree and brute force return the same object (chapter 08's rule).
     template <bool Ties = false>
     [[gnu::always_inline]] void keep(int k, T t_new, I id) {
@@ -104,9 +105,9 @@ struct soa_scene {
     size_t sphere_count = 0, plane_count = 0, triangle_count = 0;
     // Each array is padded to a multiple of W with NaN entries, which never
     // hit, so the shadow-ray loop can run over whole groups of W objects.
-    // (big_vector: 48 million spheres are five arrays of 200-400 MB, each
+    // (big_vector: 48 million spheres are four arrays of 200-400 MB, each
     // sized once and written in place on every core, common/big_array.hpp.)
-    big_vector<T> cx, cy, cz, radius, radius2;
+    big_vector<T> cx, cy, cz, radius;
     big_vector<T> px, py, pz, nx, ny, nz;  // planes: a point and the unit normal
     big_vector<T> ax, ay, az, e1x, e1y, e1z, e2x, e2y, e2z;  // triangles: corner a, edges b-a, c-a
     big_vector<T> bx, by, bz, br2;  // a sphere around each triangle (radius squared), to skip it cheaply
@@ -115,9 +116,9 @@ struct soa_scene {
     double box_pad = 0;
 
     // With a tree, spheres and triangles are stored in the trees' leaf
-    // order, so a leaf is a contiguous range of the arrays; original[i] is
-    // then the scene's own number of object i, and closest_hits answers with
-    // those numbers.
+    // order, so a leaf is a contiguous range of the arrays; sphere_number(i)
+    // and triangle_number(j) are then the scene's own numbers of stored
+    // sphere i and triangle j, and closest_hits answers with those numbers.
     bool tree = false;
     //
     // Spheres and triangles get different trees, each the faster of the two
@@ -129,7 +130,6 @@ struct soa_scene {
     // and single rays are three times faster there).
     bvh_tree sphere_tree;
     bvh_wide_tree triangle_tree;
-    big_vector<std::int64_t> original;
     // The scene's triangles and planes, for the rare exact decisions
     // (corners and plane_normal below).
     const std::vector<triangle<double>>* source_triangles = nullptr;
@@ -156,17 +156,16 @@ struct soa_scene {
         source_triangles = &s.triangles;
         source_planes = &s.planes;
         if (tree) build_trees(s);
-        for (auto* v : {&cx, &cy, &cz, &radius, &radius2}) v->reserve(padded(sphere_count));
+        for (auto* v : {&cx, &cy, &cz, &radius}) v->reserve(padded(sphere_count));
         for (auto* v : {&px, &py, &pz, &nx, &ny, &nz}) v->reserve(padded(plane_count));
         for (auto* v : {&ax, &ay, &az, &e1x, &e1y, &e1z, &e2x, &e2y, &e2z, &bx, &by, &bz, &br2})
             v->reserve(padded(triangle_count));
         add_spheres(s.spheres);
         for (const auto& x : s.planes) add_plane(x);
         for (size_t j = 0; j < triangle_count; ++j) add_triangle(s.triangles[tree ? triangle_tree.order[j] : j]);
-        for (auto* v : {&cx, &cy, &cz, &radius, &radius2, &px, &py, &pz, &nx, &ny, &nz, &ax, &ay, &az, &e1x, &e1y,
+        for (auto* v : {&cx, &cy, &cz, &radius, &px, &py, &pz, &nx, &ny, &nz, &ax, &ay, &az, &e1x, &e1y,
                         &e1z, &e2x, &e2y, &e2z, &bx, &by, &bz, &br2})
             v->resize(padded(v->size()), std::numeric_limits<T>::quiet_NaN());
-        if (tree) number_in_scene_order();
     }
 
     // The length of an array of n objects with its NaN padding: at least
@@ -177,13 +176,18 @@ struct soa_scene {
     // The spheres in leaf order (or the scene's), on every core, each slot
     // written once, by one thread.
     void add_spheres(const std::vector<sphere<double>>& spheres) {
-        for (auto* v : {&cx, &cy, &cz, &radius, &radius2}) v->resize(sphere_count);
+        for (auto* v : {&cx, &cy, &cz, &radius}) v->resize(sphere_count);
         for_each_chunk(sphere_count, [&](size_t j) {
             const sphere<double>& x = spheres[tree ? sphere_tree.order[j] : j];
             cx[j] = T(x.center.x), cy[j] = T(x.center.y), cz[j] = T(x.center.z);
-            radius[j] = T(x.radius), radius2[j] = T(x.radius) * T(x.radius);
+            radius[j] = T(x.radius);
         });
     }
+
+    // Sphere i's radius squared, in T. Formed where it is used rather than
+    // stored: one multiplication against a fifth array to stream through
+    // (400 MB in double for 48 million spheres).
+    T radius_squared(size_t i) const { return radius[i] * radius[i]; }
 
     // f(i) for every i in [0, n), in a few contiguous chunks per thread.
     template <class F>
@@ -227,15 +231,12 @@ struct soa_scene {
         br2.push_back(std::nextafter(T(1.02 * 1.01 * r * r), infinity<T>));
     }
 
-    // original[i]: the scene's number of stored object i (spheres, then
-    // planes, then triangles, each kind in its tree's leaf order).
-    void number_in_scene_order() {
-        original.reserve(sphere_count + plane_count + triangle_count);
-        original.resize(sphere_count);
-        for_each_chunk(sphere_count, [&](size_t j) { original[j] = std::int64_t(sphere_tree.order[j]); });
-        for (size_t j = 0; j < plane_count; ++j) original.push_back(std::int64_t(sphere_count + j));
-        for (size_t j = 0; j < triangle_count; ++j)
-            original.push_back(std::int64_t(sphere_count + plane_count + triangle_tree.order[j]));
+    // The scene's number of stored sphere i and of stored triangle j (the
+    // scene numbers spheres, then planes, then triangles; with a tree each
+    // kind is stored in its tree's leaf order, which order[] undoes).
+    std::int64_t sphere_number(size_t i) const { return std::int64_t(tree ? sphere_tree.order[i] : i); }
+    std::int64_t triangle_number(size_t j) const {
+        return std::int64_t(sphere_count + plane_count) + std::int64_t(tree ? triangle_tree.order[j] : j);
     }
 
     // Float boxes that hold each object as the kernels see it, whatever the

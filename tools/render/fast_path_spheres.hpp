@@ -90,7 +90,7 @@ inline T sphere_t(T fx, T fy, T fz, T c, T rr, T dx, T dy, T dz, T a, T inv_a, T
 template <class T, sphere_mode SM, bool Ties>
 [[gnu::always_inline]] inline void sphere_closest_common_origin(const soa_scene<T>& s, size_t i, index_t<T> id,
                                                                 const packet<T>& p, T tmin, packet_best<T>& best) {
-    const T fx = p.ox[0] - s.cx[i], fy = p.oy[0] - s.cy[i], fz = p.oz[0] - s.cz[i], rr = s.radius2[i];
+    const T fx = p.ox[0] - s.cx[i], fy = p.oy[0] - s.cy[i], fz = p.oz[0] - s.cz[i], rr = s.radius_squared(i);
     const T c = sphere_c<T, SM>(fx, fy, fz, s.radius[i], rr);
     int near_any = 0;
     for (int k = 0; k < W; ++k)
@@ -106,7 +106,7 @@ template <class T, sphere_mode SM, bool Ties>
 template <class T, sphere_mode SM, bool Ties>
 [[gnu::always_inline]] inline void sphere_closest_own_origins(const soa_scene<T>& s, size_t i, index_t<T> id,
                                                               const packet<T>& p, T tmin, packet_best<T>& best) {
-    const T cx = s.cx[i], cy = s.cy[i], cz = s.cz[i], r = s.radius[i], rr = s.radius2[i];
+    const T cx = s.cx[i], cy = s.cy[i], cz = s.cz[i], r = s.radius[i], rr = r * r;
     int near_any = 0;
     for (int k = 0; k < W; ++k) {
         const T fx = p.ox[k] - cx, fy = p.oy[k] - cy, fz = p.oz[k] - cz;
@@ -129,7 +129,7 @@ template <class T, sphere_mode SM, bool CommonOrigin, bool Ties>
 [[gnu::always_inline]] inline void spheres_closest(const soa_scene<T>& s, size_t begin, size_t end, const packet<T>& p,
                                                    T tmin, packet_best<T>& best) {
     for (size_t i = begin; i < end; ++i) {
-        const index_t<T> id = Ties ? index_t<T>(s.original[i]) : index_t<T>(i);
+        const index_t<T> id = Ties ? index_t<T>(s.sphere_number(i)) : index_t<T>(i);
         if constexpr (CommonOrigin)
             sphere_closest_common_origin<T, SM, Ties>(s, i, id, p, tmin, best);
         else
@@ -145,11 +145,11 @@ template <class T, sphere_mode SM>
 [[gnu::always_inline]] inline void spheres_closest_one(const soa_scene<T>& s, size_t begin, size_t end,
                                                        const packet<T>& p, int k, T tmin, packet_best<T>& best) {
     for (size_t i = begin; i < end; ++i) {
-        const T fx = p.ox[k] - s.cx[i], fy = p.oy[k] - s.cy[i], fz = p.oz[k] - s.cz[i], rr = s.radius2[i];
+        const T fx = p.ox[k] - s.cx[i], fy = p.oy[k] - s.cy[i], fz = p.oz[k] - s.cz[i], rr = s.radius_squared(i);
         const T c = sphere_c<T, SM>(fx, fy, fz, s.radius[i], rr);
         best.template keep<true>(
             k, sphere_t<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], best.a[k], best.inv_a[k], tmin),
-            index_t<T>(s.original[i]));
+            index_t<T>(s.sphere_number(i)));
     }
 }
 
@@ -157,8 +157,9 @@ template <class T, sphere_mode SM>
 template <class T, sphere_mode SM>
 [[gnu::always_inline]] inline bool sphere_blocks(const soa_scene<T>& s, size_t j, const shadow_ray<T>& r, T tmin, T tmax) {
     const T fx = r.ox - s.cx[j], fy = r.oy - s.cy[j], fz = r.oz - s.cz[j];
-    const T c = sphere_c<T, SM>(fx, fy, fz, s.radius[j], s.radius2[j]);
-    return sphere_t<T, SM>(fx, fy, fz, c, s.radius2[j], r.dx, r.dy, r.dz, r.a, r.inv_a, tmin) < tmax;
+    const T rr = s.radius_squared(j);
+    const T c = sphere_c<T, SM>(fx, fy, fz, s.radius[j], rr);
+    return sphere_t<T, SM>(fx, fy, fz, c, rr, r.dx, r.dy, r.dz, r.a, r.inv_a, tmin) < tmax;
 }
 
 // Is the shadow ray blocked by a sphere? With a tree, only the leaves whose

@@ -150,7 +150,6 @@ template <class T, bool CommonOrigin>
 template <class T, bool CommonOrigin>
 [[gnu::always_inline]] inline void triangles_closest_in_tree(const soa_scene<T>& s, const packet<T>& p, T tmin, packet_best<T>& best) {
     using I = index_t<T>;
-    const I base = I(s.sphere_count + s.plane_count);
     for (int k = 0; k < W; ++k) {
         const int o = CommonOrigin ? 0 : k;
         const T ox = p.ox[o], oy = p.oy[o], oz = p.oz[o], dx = p.dx[k], dy = p.dy[k], dz = p.dz[k];
@@ -162,7 +161,7 @@ template <class T, bool CommonOrigin>
                 const triangle_group<T> group(s, g, size_t(b) + n, ox, oy, oz, dx, dy, dz, best.d_max[k], tmin);
                 for (int i = 0; i < leaf_lanes && g + size_t(i) < size_t(b) + n; ++i) {
                     if (!(group.t[i] <= bt)) continue;  // the usual case: no number needed
-                    const I id = I(s.original[size_t(base) + g + size_t(i)]);
+                    const I id = I(s.triangle_number(g + size_t(i)));
                     if (group.t[i] < bt || id < bo) bt = group.t[i], bo = id;  // at a tie, the lowest number
                 }
             }
