@@ -7,7 +7,7 @@
 // boundaries between 16 equal bins of the objects' centres along the
 // widest axis (fewer for a node of fewer than 16 objects); one pass counts
 // each bin's objects and grows its box, a sweep from each side then prices
-// all 15 splits.
+// every boundary (15 with 16 bins).
 #include "bvh_build.hpp"
 
 #include "common/render.hpp"
@@ -222,9 +222,10 @@ class builder {
 public:
     builder(big_vector<record>& records, int max_leaf) : rec_(records), max_leaf_(size_t(max_leaf)) {}
 
-    // Builds j's subtree into `nodes` (j.slot already exists there). Ranges
-    // below `defer_below` objects (other than the root) are not built but
-    // appended to `deferred`.
+    // Builds root's subtree into `nodes` (root.slot already exists there),
+    // each node's two children in a pair of slots from `slots`. Ranges below
+    // `defer_below` objects (other than the root) are not built but appended
+    // to `deferred`.
     void build(const job& root, bvh_node* nodes, node_slots& slots, size_t defer_below, std::vector<job>& deferred) {
         std::vector<job> stack{root};
         while (!stack.empty()) {
