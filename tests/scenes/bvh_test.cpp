@@ -11,6 +11,7 @@
 
 #include <doctest/doctest.h>
 
+#include <functional>
 #include <random>
 #include <string>
 
@@ -117,4 +118,51 @@ TEST_CASE("the plan uses a tree from tree_threshold objects on and says so") {
     const scene_plan big = make_plan(generated("balls", 3, "pinhole"), 1e-3, std::nullopt);  // 820 spheres
     CHECK(big.tree);
     CHECK(big.describe().find("BVH over 820 spheres and triangles") != std::string::npos);
+}
+
+namespace {
+
+// A lit render's shadow rays, traced 32 at a time as render_fast traces
+// them (fast_path_shadows.hpp), find exactly the blockers any_hit finds one
+// ray at a time, with and without the tree, in both precisions; and
+// chapter 06's shade() asks no ray that was not asked ahead. The lights sit
+// among the objects (rays that end between them), far away, and on an
+// object (a ray of length 0, or one that starts where it ends).
+void check_shadow_packets_agree(scene_description d) {
+    d.world.lights.clear();
+    d.world.lights.push_back({vec3d(0.1, 0.2, 0.05), color(1)});
+    d.world.lights.push_back({vec3d(4, 3, 6), color(1)});
+    if (!d.world.spheres.empty()) {
+        const sphere<double>& s = d.world.spheres.back();
+        d.world.lights.push_back({s.center + vec3d(s.radius, 0, 0), color(1)});
+    }
+    const pass_timer once = [](const std::function<void()>& pass) {
+        pass();
+        return 0.0;
+    };
+    for (precision p : {precision::single, precision::double_})
+        for (bool tree : {false, true}) {
+            scene_plan plan = make_plan(d, 1e-3, p);
+            plan.tree = tree;
+            const shadow_figures f = time_shadow_rays(d, plan, 64, 48, once);
+            CAPTURE(p == precision::single ? "float" : "double");
+            CAPTURE(tree);
+            CHECK(f.shadow_rays > 2000);
+            CHECK(f.occluded_one_at_a_time > 100);                          // the lights really are hidden at times
+            CHECK(f.occluded_one_at_a_time < f.shadow_rays - 100);         // and seen at times
+            CHECK(f.occluded == f.occluded_one_at_a_time);
+            CHECK(f.asked_but_not_ahead == 0);
+        }
+}
+
+}  // namespace
+
+TEST_CASE("shadow rays in packets of 32 are blocked exactly when any_hit says so: sphereflake, mountain, random scenes") {
+    check_shadow_packets_agree(generated("balls", 3, "pinhole"));
+    check_shadow_packets_agree(generated("mount", 4, "pinhole"));
+    for (unsigned seed : {1u, 2u}) {
+        CAPTURE(seed);
+        check_shadow_packets_agree(random_scene(seed, "pinhole"));
+        check_shadow_packets_agree(random_scene(seed, "orthographic"));
+    }
 }

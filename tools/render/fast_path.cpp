@@ -36,6 +36,7 @@
 //   fast_path_planes.hpp      plane lane loops (kernels in fast_path_kernels.hpp)
 //   fast_path_triangles.hpp   triangle lane loops, brute force and in the wide tree
 //   fast_path_queries.hpp     closest_hits (a packet) and any_hit (a shadow ray)
+//   fast_path_shadows.hpp     shadow rays asked ahead of shade() and traced W at a time
 #include "fast_path.hpp"
 
 #include "bvh_build.hpp"
@@ -61,7 +62,9 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 // Run-time dispatch: this file (with its parts) is compiled once per
@@ -81,6 +84,7 @@ namespace {
 #include "fast_path_planes.hpp"
 #include "fast_path_triangles.hpp"
 #include "fast_path_queries.hpp"
+#include "fast_path_shadows.hpp"
 #undef RT_FAST_PATH_PARTS
 
 // Everything the pixel loop needs, in precision T.
@@ -209,6 +213,23 @@ struct context {
         }
         return n;
     }
+
+    // Where lane k of the packet just traced hit object o at t: the point
+    // put back on its surface, the normal on the viewer's side (the
+    // chapters' one face rule, common/hit_record.hpp) and the material there.
+    struct surface_hit {
+        vec3<T> point, normal, direction;
+        material m;
+    };
+    surface_hit hit_of(const packet<T>& p, T t, size_t o, int k) const {
+        surface_hit h;
+        const vec3<T> origin(p.ox[k], p.oy[k], p.oz[k]);
+        h.direction = vec3<T>(p.dx[k], p.dy[k], p.dz[k]);
+        h.point = surface_point(o, origin + t * h.direction);
+        h.normal = facing_normal(outward_normal(o, h.point), h.direction);
+        h.m = material_at_hit(o, h.point);
+        return h;
+    }
 };
 
 template <class T, sphere_mode SM, bool Planes, bool Tris, bool Lights>
@@ -229,36 +250,54 @@ image render_with(const scene_description& d, int width, int height, bool tree, 
     for_each_row((height + tile_h - 1) / tile_h, [&](int tile_row) {
         const int row0 = tile_row * tile_h;
         long shadows = 0;
-        ch06::occlusion_test<T> occluded;
-        if constexpr (Lights)
-            occluded = [&](const ray<T>& r, const interval<T>& range) {
-                ++shadows;
-                return any_hit<T, SM, Planes, Tris>(ctx.soa, r, range.min, range.max);
-            };
+        auto inside = [&](int col0, int k) { return col0 + k % tile_w < width && row0 + k / tile_w < height; };
         packet<T> p;
         alignas(64) T t[W];
         alignas(64) index_t<T> object[W];
-        // The colour lane k's ray brings back, from the packet just traced.
-        auto shade_lane = [&](int k) -> color {
-            if (object[k] < 0) return d.world.background;
-            const vec3<T> origin(p.ox[k], p.oy[k], p.oz[k]), direction(p.dx[k], p.dy[k], p.dz[k]);
-            const vec3<T> point = ctx.surface_point(size_t(object[k]), origin + t[k] * direction);
-            // The side the viewer sees, by the chapters' one face rule (common/hit_record.hpp).
-            const vec3<T> n = facing_normal(ctx.outward_normal(size_t(object[k]), point), direction);
-            const material m = ctx.material_at_hit(size_t(object[k]), point);
-            if constexpr (Lights)
-                return ch06::shade(point, n, -direction, m, d.world.lights, d.world.ambient, occluded);
-            else
-                return unlit_colour(m, n, direction);
+        shadow_batch<T> batch;
+        int lane = 0;  // the lane shade() is shading
+        ch06::occlusion_test<T> occluded;
+        if constexpr (Lights)
+            occluded = [&](const ray<T>& r, const interval<T>& range) {
+                return batch.template replay<SM, Planes, Tris>(ctx.soa, lane, r, range);
+            };
+        // The colours of the packet just traced, lanes inside the picture.
+        // Every hit is found first, so that a lit scene's shadow rays are
+        // asked ahead and traced W at a time (fast_path_shadows.hpp).
+        color colour[W];
+        typename context<T>::surface_hit hit[W];
+        bool has_hit[W];
+        auto shade_packet = [&](int col0) {
+            for (int k = 0; k < W; ++k) {
+                has_hit[k] = inside(col0, k) && object[k] >= 0;
+                if (has_hit[k]) hit[k] = ctx.hit_of(p, t[k], size_t(object[k]), k);
+            }
+            if constexpr (Lights) {
+                ask_every_light(batch, d.world.lights, hit, has_hit);
+                batch.template answer<SM, Planes, Tris>(ctx.soa);
+                shadows += long(batch.size());
+            }
+            for (int k = 0; k < W; ++k) {
+                if (!inside(col0, k)) continue;
+                lane = k;
+                const auto& h = hit[k];
+                if (object[k] < 0)
+                    colour[k] = d.world.background;
+                else if constexpr (Lights)
+                    colour[k] = ch06::shade(h.point, h.normal, -h.direction, h.m, d.world.lights, d.world.ambient, occluded);
+                else
+                    colour[k] = unlit_colour(h.m, h.normal, h.direction);
+            }
+            if constexpr (Lights) shadows += batch.alone, batch.alone = 0;
         };
-        auto inside = [&](int col0, int k) { return col0 + k % tile_w < width && row0 + k / tile_w < height; };
         std::vector<pcg32> streams;
         for (int col0 = 0; col0 < width; col0 += tile_w) {
             if (spp == 1) {  // one ray through each pixel's centre
                 ctx.fill(p, col0, row0);
                 ctx.template trace<SM, Planes, Tris>(p, t, object);
+                shade_packet(col0);
                 for (int k = 0; k < W; ++k)
-                    if (inside(col0, k)) img.at(col0 + k % tile_w, row0 + k / tile_w) = shade_lane(k);
+                    if (inside(col0, k)) img.at(col0 + k % tile_w, row0 + k / tile_w) = colour[k];
                 continue;
             }
             // spp samples per pixel, one in each cell of a strata x strata grid
@@ -279,8 +318,9 @@ image render_with(const scene_description& d, int width, int height, bool tree, 
                 }
                 ctx.fill_samples(p, col0, row0, film);
                 ctx.template trace<SM, Planes, Tris>(p, t, object);
+                shade_packet(col0);
                 for (int k = 0; k < W; ++k)
-                    if (inside(col0, k)) sum[k] += shade_lane(k);
+                    if (inside(col0, k)) sum[k] += colour[k];
             }
             for (int k = 0; k < W; ++k)
                 if (inside(col0, k)) img.at(col0 + k % tile_w, row0 + k / tile_w) = sum[k] / float(spp);
@@ -293,6 +333,25 @@ image render_with(const scene_description& d, int width, int height, bool tree, 
     return img;
 }
 
+// The primary rays of tile row `tile_row`, traced; then
+// visit(p, t, object, k, col, row) for every lane k inside the picture
+// (pixel col, row).
+template <class T, sphere_mode SM, bool Planes, bool Tris, class Visit>
+void trace_tile_row(const context<T>& ctx, int width, int height, int tile_row, Visit&& visit) {
+    const int row0 = tile_row * tile_h;
+    packet<T> p;
+    alignas(64) T t[W];
+    alignas(64) index_t<T> object[W];
+    for (int col0 = 0; col0 < width; col0 += tile_w) {
+        ctx.fill(p, col0, row0);
+        ctx.template trace<SM, Planes, Tris>(p, t, object);
+        for (int k = 0; k < W; ++k) {
+            const int col = col0 + k % tile_w, row = row0 + k / tile_w;
+            if (col < width && row < height) visit(p, t, object, k, col, row);
+        }
+    }
+}
+
 template <class T, sphere_mode SM, bool Planes, bool Tris>
 primary_hits trace_with(const scene_description& d, int width, int height, bool tree) {
     const context<T> ctx(d, width, height, tree);
@@ -300,23 +359,28 @@ primary_hits trace_with(const scene_description& d, int width, int height, bool 
     hits.object.assign(size_t(width) * size_t(height), -1);
     hits.t.assign(size_t(width) * size_t(height), 0);
     for_each_row((height + tile_h - 1) / tile_h, [&](int tile_row) {
-        const int row0 = tile_row * tile_h;
-        packet<T> p;
-        alignas(64) T t[W];
-        alignas(64) index_t<T> object[W];
-        for (int col0 = 0; col0 < width; col0 += tile_w) {
-            ctx.fill(p, col0, row0);
-            ctx.template trace<SM, Planes, Tris>(p, t, object);
-            for (int k = 0; k < W; ++k) {
-                const int col = col0 + k % tile_w, row = row0 + k / tile_w;
-                if (col >= width || row >= height) continue;
-                size_t i = size_t(row) * size_t(width) + size_t(col);
-                hits.object[i] = object[k] < 0 ? -1 : int(object[k]);
-                hits.t[i] = (long double)t[k];
-            }
-        }
+        trace_tile_row<T, SM, Planes, Tris>(ctx, width, height, tile_row,
+                                            [&](const packet<T>&, const T* t, const index_t<T>* object, int k, int col, int row) {
+                                                const size_t i = size_t(row) * size_t(width) + size_t(col);
+                                                hits.object[i] = object[k] < 0 ? -1 : int(object[k]);
+                                                hits.t[i] = (long double)t[k];
+                                            });
     });
     return hits;
+}
+
+// How many pixels' primary rays hit something, on every core.
+template <class T, sphere_mode SM, bool Planes, bool Tris>
+long count_hits(const context<T>& ctx, int width, int height) {
+    std::atomic<long> hits{0};
+    for_each_row((height + tile_h - 1) / tile_h, [&](int tile_row) {
+        long row_hits = 0;
+        trace_tile_row<T, SM, Planes, Tris>(
+            ctx, width, height, tile_row,
+            [&](const packet<T>&, const T*, const index_t<T>* object, int k, int, int) { row_hits += object[k] >= 0; });
+        hits += row_hits;
+    });
+    return hits.load();
 }
 
 template <class T, sphere_mode SM, bool Planes, bool Tris>
@@ -328,25 +392,78 @@ long count_with(const scene_description& d, int width, int height, bool tree, in
         stats->setup_seconds = setup.seconds();
         stats->setup_cpu_seconds = process_cpu_seconds() - setup_cpu;
     }
-    std::atomic<long> hits{0};
-    for (int r = 0; r < repeat; ++r) {
-    hits = 0;
-    for_each_row((height + tile_h - 1) / tile_h, [&](int tile_row) {
-        const int row0 = tile_row * tile_h;
-        packet<T> p;
-        alignas(64) T t[W];
-        alignas(64) index_t<T> object[W];
-        long row_hits = 0;
-        for (int col0 = 0; col0 < width; col0 += tile_w) {
-            ctx.fill(p, col0, row0);
-            ctx.template trace<SM, Planes, Tris>(p, t, object);
-            for (int k = 0; k < W; ++k)
-                row_hits += object[k] >= 0 && col0 + k % tile_w < width && row0 + k / tile_w < height;
-        }
-        hits += row_hits;
+    long hits = 0;
+    for (int r = 0; r < repeat; ++r) hits = count_hits<T, SM, Planes, Tris>(ctx, width, height);
+    return hits;
+}
+
+// The shadow rays of a lit render apart from its shading. Every primary
+// hit's surface is found once, tile by tile. Then, under the caller's clock
+// and on every core as the render does: the primary rays alone (trace
+// only); the shadow rays built as the render asks them ahead
+// (ask_every_light: chapter 06's lambert and shadow_ray); those rays
+// traced as the render traces them (shadow_batch::answer, W at a time);
+// and the same rays one at a time (any_hit). Last, each tile is shaded by
+// chapter 06's shade() with the packets' answers, counting the rays shade()
+// asks that were not asked ahead (replay traces those alone): none, when
+// the render's packets answer every shadow ray.
+template <class T, sphere_mode SM, bool Planes, bool Tris>
+shadow_figures shadows_with(const scene_description& d, int width, int height, bool tree, const pass_timer& timed) {
+    const context<T> ctx(d, width, height, tree);
+    const int tile_rows = (height + tile_h - 1) / tile_h, tile_cols = (width + tile_w - 1) / tile_w;
+    struct tile {
+        typename context<T>::surface_hit hit[W];
+        bool has_hit[W] = {};
+        shadow_batch<T> batch;
+    };
+    std::vector<tile> tiles(static_cast<size_t>(tile_rows) * static_cast<size_t>(tile_cols));
+    auto tile_at = [&](int tile_row, int c) -> tile& { return tiles[size_t(tile_row) * size_t(tile_cols) + size_t(c)]; };
+    for_each_row(tile_rows, [&](int tile_row) {
+        trace_tile_row<T, SM, Planes, Tris>(
+            ctx, width, height, tile_row,
+            [&](const packet<T>& p, const T* t, const index_t<T>* object, int k, int col, int) {
+                tile& x = tile_at(tile_row, col / tile_w);
+                x.has_hit[k] = object[k] >= 0;
+                if (x.has_hit[k]) x.hit[k] = ctx.hit_of(p, t[k], size_t(object[k]), k);
+            });
     });
-    }
-    return hits.load();
+    // f(tile) for every tile, on every core.
+    auto every_tile = [&](auto&& f) {
+        for_each_row(tile_rows, [&](int tile_row) {
+            for (int c = 0; c < tile_cols; ++c) f(tile_at(tile_row, c));
+        });
+    };
+    auto blocked = [&] {
+        long n = 0;
+        for (const tile& x : tiles) n += x.batch.blocked();
+        return n;
+    };
+    shadow_figures f;
+    f.primary_rays = long(width) * long(height);
+    f.primary_seconds = timed([&] { f.primary_hits = count_hits<T, SM, Planes, Tris>(ctx, width, height); });
+    f.ask_seconds = timed([&] { every_tile([&](tile& x) { ask_every_light(x.batch, d.world.lights, x.hit, x.has_hit); }); });
+    for (const tile& x : tiles) f.shadow_rays += long(x.batch.size());
+    f.shadow_seconds = timed([&] { every_tile([&](tile& x) { x.batch.template answer<SM, Planes, Tris>(ctx.soa); }); });
+    f.occluded = blocked();
+    f.one_at_a_time_seconds = timed(
+        [&] { every_tile([&](tile& x) { x.batch.template answer_one_at_a_time<SM, Planes, Tris>(ctx.soa); }); });
+    f.occluded_one_at_a_time = blocked();
+    std::atomic<long> alone{0};
+    every_tile([&](tile& x) {
+        x.batch.template answer<SM, Planes, Tris>(ctx.soa);
+        int lane = 0;
+        const ch06::occlusion_test<T> occluded = [&](const ray<T>& r, const interval<T>& range) {
+            return x.batch.template replay<SM, Planes, Tris>(ctx.soa, lane, r, range);
+        };
+        for (lane = 0; lane < W; ++lane) {
+            const auto& h = x.hit[lane];
+            if (x.has_hit[lane])
+                (void)ch06::shade(h.point, h.normal, -h.direction, h.m, d.world.lights, d.world.ambient, occluded);
+        }
+        alone += x.batch.alone;
+    });
+    f.asked_but_not_ahead = alone.load();
+    return f;
 }
 
 // Calls f(SM, Planes, Tris, Lights) with each choice as a compile-time
@@ -403,6 +520,18 @@ long count_primary_hits(const scene_description& d, const scene_plan& plan, int 
         return dispatch(mode_of(plan), plan.planes > 0, plan.triangles > 0, false, [&](auto SM, auto P, auto Tr, auto) {
             return count_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value>(d, width, height, plan.tree,
                                                                                                 repeat, stats);
+        });
+    };
+    return plan.prec == precision::single ? run(float{}) : run(double{});
+}
+
+shadow_figures time_shadow_rays(const scene_description& d, const scene_plan& plan, int width, int height,
+                                const pass_timer& timed) {
+    auto run = [&](auto type) {
+        using T = decltype(type);
+        return dispatch(mode_of(plan), plan.planes > 0, plan.triangles > 0, false, [&](auto SM, auto P, auto Tr, auto) {
+            return shadows_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value>(d, width, height,
+                                                                                                 plan.tree, timed);
         });
     };
     return plan.prec == precision::single ? run(float{}) : run(double{});

@@ -14,6 +14,7 @@
 #include "common/image.hpp"
 #include "common/scene_file.hpp"
 
+#include <functional>
 #include <vector>
 
 namespace rt::render_tool {
@@ -47,6 +48,26 @@ primary_hits trace_primary_reference(const scene_description& scene, int width, 
 long count_primary_hits(const scene_description& scene, const scene_plan& plan, int width, int height, int repeat = 1,
                         render_stats* stats = nullptr);
 
+// One lit render's shadow rays against its primary rays, apart from the
+// shading. Every primary hit is found once; then each pass runs on every
+// core under `timed` (which may run it several times: rt-bench keeps the
+// fastest): the primary rays alone (ask_seconds excluded: a primary ray is
+// made by the camera in a few operations); the shadow rays built as
+// render_fast asks them ahead of chapter 06's shade() (its lambert and
+// shadow_ray); those rays traced as render_fast traces them, 32 at a time
+// (fast_path_shadows.hpp); the same rays one at a time (any_hit). Both ways
+// must find the same blocked rays, and shade(), given the packets'
+// answers, must ask no ray that was not asked ahead.
+// rt-bench's measure of what a light's shadow rays cost.
+struct shadow_figures {
+    long primary_rays = 0, primary_hits = 0;
+    long shadow_rays = 0, occluded = 0, occluded_one_at_a_time = 0;
+    long asked_but_not_ahead = 0;
+    double primary_seconds = 0, ask_seconds = 0, shadow_seconds = 0, one_at_a_time_seconds = 0;
+};
+using pass_timer = std::function<double(const std::function<void()>& pass)>;
+shadow_figures time_shadow_rays(const scene_description& scene, const scene_plan& plan, int width, int height,
+                                const pass_timer& timed);
 // What building the scene's trees costs, apart from tracing: the boxes,
 // the trees and the objects' float arrays in leaf order, as the specialised
 // path would make them (rt-bench subtracts this from a traced run).

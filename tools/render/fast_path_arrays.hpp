@@ -59,6 +59,12 @@ struct packet_best {
         }
     }
 
+    // Only hits before tmax[k] count (a shadow ray's light): as if each ray
+    // had already found something there, with no number (-1).
+    void limit(const T* tmax) {
+        for (int k = 0; k < W; ++k) t[k] = tmax[k];
+    }
+
     // Ray k hits object id at t: kept if nearer than what it has, or, with
     // Ties, as near and of a lower number. Brute force meets the objects in
     // the order of their numbers, so the nearer rule alone keeps the lowest

@@ -23,6 +23,7 @@ namespace rt::render_tool {
     primary_hits trace_primary_reference(const scene_description&, int, int);                                 \
     long count_primary_hits(const scene_description&, const scene_plan&, int, int, int, render_stats*);       \
     tree_figures build_trees_only(const scene_description&);                                                  \
+    shadow_figures time_shadow_rays(const scene_description&, const scene_plan&, int, int, const pass_timer&); \
     void closest_in_trees_packet(const instanced_scene_data&, const ray<double>*, double, local_hit*);         \
     }
 
@@ -60,13 +61,15 @@ struct fast_path_copy {
     decltype(&render_tool::trace_primary_reference) trace_primary_reference;
     decltype(&render_tool::count_primary_hits) count_primary_hits;
     decltype(&render_tool::build_trees_only) build_trees_only;
+    decltype(&render_tool::time_shadow_rays) time_shadow_rays;
     decltype(&render_tool::closest_in_trees_packet) closest_in_trees_packet;
 };
 
 #define RT_FAST_PATH_COPY(name)                                                                                  \
     fast_path_copy{isa::name, &isa_##name::render_fast, &isa_##name::trace_primary,                             \
                    &isa_##name::trace_primary_reference, &isa_##name::count_primary_hits,                     \
-                   &isa_##name::build_trees_only, &isa_##name::closest_in_trees_packet},
+                   &isa_##name::build_trees_only, &isa_##name::time_shadow_rays,              \
+                   &isa_##name::closest_in_trees_packet},
 const fast_path_copy copies[] = {
 #include "fast_path_copies.inc"
 };
@@ -119,6 +122,10 @@ long count_primary_hits(const scene_description& d, const scene_plan& plan, int 
     return chosen().count_primary_hits(d, plan, width, height, repeat, stats);
 }
 tree_figures build_trees_only(const scene_description& d) { return chosen().build_trees_only(d); }
+shadow_figures time_shadow_rays(const scene_description& d, const scene_plan& plan, int width, int height,
+                                const pass_timer& timed) {
+    return chosen().time_shadow_rays(d, plan, width, height, timed);
+}
 void closest_in_trees_packet(const instanced_scene_data& d, const ray<double>* rays, double tmin, local_hit* out) {
     chosen().closest_in_trees_packet(d, rays, tmin, out);
 }

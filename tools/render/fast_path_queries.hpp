@@ -8,18 +8,31 @@
 
 // closest_hits for a packet whose every direction is of a comfortable
 // length (packet_best's d_max finite): d.d and the kernels' products
-// neither underflow nor overflow.
-template <class T, sphere_mode SM, bool Planes, bool Tris, bool CommonOrigin>
+// neither underflow nor overflow. Blocking: only whether each ray hits
+// anything matters (shadow rays), so a ray that has hit something is done:
+// its t becomes -infinity, which enters no box and is beaten by no hit.
+template <class T, sphere_mode SM, bool Planes, bool Tris, bool CommonOrigin, bool Blocking = false>
 void closest_hits_comfortable(const soa_scene<T>& s, const packet<T>& p, packet_best<T>& best, T tmin, T* tbest,
                               index_t<T>* object) {
+    auto finish_blocked = [&] {
+        if constexpr (Blocking)
+            for (int k = 0; k < W; ++k) best.t[k] = best.object[k] >= 0 ? -infinity<T> : best.t[k];
+    };
     if constexpr (SM != sphere_mode::none) {
         if (s.tree)
             traverse_packet(
                 s.sphere_tree, p, best.t,
-                [&](size_t begin, size_t end) { spheres_closest<T, SM, CommonOrigin, true>(s, begin, end, p, tmin, best); },
-                [&](int k, size_t begin, size_t end) { spheres_closest_one<T, SM>(s, begin, end, p, k, tmin, best); });
+                [&](size_t begin, size_t end) {
+                    spheres_closest<T, SM, CommonOrigin, true>(s, begin, end, p, tmin, best);
+                    finish_blocked();
+                },
+                [&](int k, size_t begin, size_t end) {
+                    spheres_closest_one<T, SM>(s, begin, end, p, k, tmin, best);
+                    if constexpr (Blocking) best.t[k] = best.object[k] >= 0 ? -infinity<T> : best.t[k];
+                });
         else
             spheres_closest<T, SM, CommonOrigin, false>(s, 0, s.sphere_count, p, tmin, best);
+        finish_blocked();
     }
     if constexpr (Planes) planes_closest<T, CommonOrigin>(s, p, tmin, best);
     if constexpr (Tris) triangles_closest<T, CommonOrigin>(s, p, tmin, best);
@@ -38,8 +51,9 @@ void closest_hits_comfortable(const soa_scene<T>& s, const packet<T>& p, packet_
 // direction. The camera makes no such ray (a primary direction is at least
 // as long as the distance 1 to the image plane); a packet built otherwise
 // may hold one.
-template <class T, sphere_mode SM, bool Planes, bool Tris, bool CommonOrigin>
-void closest_hits_scaled(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, index_t<T>* object) {
+template <class T, sphere_mode SM, bool Planes, bool Tris, bool CommonOrigin, bool Blocking = false>
+void closest_hits_scaled(const soa_scene<T>& s, const packet<T>& p, T tmin, const T* tmax, T* tbest,
+                         index_t<T>* object) {
     for (int k = 0; k < W; ++k) {
         const int o = CommonOrigin ? 0 : k;
         const int e = formulations::direction_scale(vec3<T>(p.dx[k], p.dy[k], p.dz[k]));
@@ -49,9 +63,11 @@ void closest_hits_scaled(const soa_scene<T>& s, const packet<T>& p, T tmin, T* t
             alone.dx[j] = std::ldexp(p.dx[k], e), alone.dy[j] = std::ldexp(p.dy[k], e), alone.dz[j] = std::ldexp(p.dz[k], e);
         }
         packet_best<T> best(alone);
+        if (tmax)
+            for (int j = 0; j < W; ++j) best.t[j] = std::ldexp(tmax[k], -e);
         alignas(64) T t[W];
         alignas(64) index_t<T> id[W];
-        closest_hits_comfortable<T, SM, Planes, Tris, true>(s, alone, best, std::ldexp(tmin, -e), t, id);
+        closest_hits_comfortable<T, SM, Planes, Tris, true, Blocking>(s, alone, best, std::ldexp(tmin, -e), t, id);
         tbest[k] = std::ldexp(t[0], e);  // infinity (a miss) stays infinity
         object[k] = id[0];
     }
@@ -59,16 +75,23 @@ void closest_hits_scaled(const soa_scene<T>& s, const packet<T>& p, T tmin, T* t
 
 // The closest hit of each ray of a packet: tbest[k] and object[k] (-1 for
 // a miss), the scene's own number of the object (spheres, then planes, then
-// triangles; with a tree too). At a tie, the lowest number.
-template <class T, sphere_mode SM, bool Planes, bool Tris, bool CommonOrigin>
-void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, index_t<T>* object) {
+// triangles; with a tree too). At a tie, the lowest number. With tmax, only
+// hits with t < tmax[k] count (a miss leaves tbest[k] = tmax[k]): ray k is
+// then blocked, in any_hit's sense, exactly when object[k] >= 0, since
+// every loop keeps a t only below the best so far and asks the same
+// kernels any_hit asks. Blocking (shadow rays): only that is answered, and
+// tbest is not a hit's t.
+template <class T, sphere_mode SM, bool Planes, bool Tris, bool CommonOrigin, bool Blocking = false>
+void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, index_t<T>* object,
+                  const T* tmax = nullptr) {
     packet_best<T> best(p);
+    if (tmax) best.limit(tmax);
     int uncomfortable = 0;  // d_max is infinite for a direction to scale (or an infinite one: e = 0, a miss)
     for (int k = 0; k < W; ++k) uncomfortable |= int(best.d_max[k] == infinity<T>);
     if (uncomfortable)
-        closest_hits_scaled<T, SM, Planes, Tris, CommonOrigin>(s, p, tmin, tbest, object);
+        closest_hits_scaled<T, SM, Planes, Tris, CommonOrigin, Blocking>(s, p, tmin, tmax, tbest, object);
     else
-        closest_hits_comfortable<T, SM, Planes, Tris, CommonOrigin>(s, p, best, tmin, tbest, object);
+        closest_hits_comfortable<T, SM, Planes, Tris, CommonOrigin, Blocking>(s, p, best, tmin, tbest, object);
 }
 
 // Is anything hit with tmin < t < tmax? One ray (a shadow ray); each kind
