@@ -8,8 +8,10 @@
 // independent lanes, which the compiler turns into vector instructions
 // (AVX2: one instruction for eight floats or four doubles). Each lane keeps
 // its own closest t and object with a select instead of a branch, so there
-// is nothing to stop the vectoriser. Shadow rays go one at a time, with
-// objects in the lanes instead.
+// is nothing to stop the vectoriser. Shadow rays go 32 at a time too, each
+// with its own origin, asked ahead of chapter 06's shade()
+// (fast_path_shadows.hpp); one that shade() asks unexpectedly goes alone,
+// with objects in the lanes instead.
 //
 // Specialisation. Every loop the scene does not need is removed at compile
 // time: the kernels are templates on the scalar type, the sphere
