@@ -494,7 +494,8 @@ class Grader:
     def _tidy(self, text, ch, work):
         """Compiler output with the grader's paths replaced by the student's."""
         text = text.replace(os.path.join(work, ch["id"]) + os.sep, f"chapters/{ch['folder']}/")
-        text = text.replace(self.tree.source + os.sep, "").replace(self.tree.build + os.sep, "")
+        # The build first: it lies inside the source's copy.
+        text = text.replace(self.tree.build + os.sep, "").replace(self.tree.source + os.sep, "")
         return trim(text, COMPILER_SHOWN)
 
     def _take_executables(self, ch, folder):

@@ -6,9 +6,17 @@ A grading folder (--build-dir, default build/grader) holds:
                synchronised by content, so unchanged files keep their time
                stamps and nothing rebuilds; as root, solutions/ and
                tests/hidden/ in it are readable by root only
-  build/       the CMake build of source/ with every chapter on the student
+  source/build/tree/
+               the CMake build of source/ with every chapter on the student
                side (RT_STUDENT_CHAPTERS=all) and each chapter's earlier
-               chapters from the solutions (RT_DEPENDENCIES_FROM_SOLUTIONS)
+               chapters from the solutions (RT_DEPENDENCIES_FROM_SOLUTIONS);
+               root's alone, like solutions/. It sits two folders below the
+               copy, as a kit's own build (build/student) sits below the kit,
+               so that every compile command of the two builds names the same
+               relative paths: with a compiler cache told the kit's folder
+               (ccache's base_dir), the preview's files that the student's
+               build has compiled already (common/, the chapter programs, the
+               public tests) are cache hits and are not compiled twice.
   stubs/       the compiled stubs' object files, put back for chapters a
                submission does not provide
   state.json   the chapters, their exercise files' compile commands and the
@@ -84,7 +92,9 @@ def sync_source(repo, dest, grading_folder=None, keep=()):
             shutil.copyfile(src, dst)
             shutil.copymode(src, dst)
             changed += 1
-    for dirpath, _, filenames in os.walk(dest):
+    for dirpath, dirnames, filenames in os.walk(dest):
+        if dirpath == dest:  # the tree's build (Tree.build) lives in the copy; nothing of it is copied
+            dirnames[:] = [d for d in dirnames if not d.startswith("build")]
         for name in filenames:
             rel = os.path.relpath(os.path.join(dirpath, name), dest)
             if rel not in wanted:
@@ -99,6 +109,8 @@ def protect(folder):
     os.chmod(folder, 0o711)
     source = os.path.join(folder, "source")
     for dirpath, dirnames, filenames in os.walk(source):
+        if dirpath == source:   # the build (source/build/), below
+            dirnames[:] = [d for d in dirnames if d != "build"]
         os.chmod(dirpath, 0o755)
         for name in filenames:
             os.chmod(os.path.join(dirpath, name), 0o644)
@@ -106,7 +118,7 @@ def protect(folder):
         path = os.path.join(source, rel)
         if os.path.isdir(path):
             os.chmod(path, 0o700)
-    for rel in ("build", "stubs"):
+    for rel in ("source/build", "stubs"):
         path = os.path.join(folder, rel)
         if os.path.isdir(path):
             os.chmod(path, 0o700)
@@ -132,7 +144,7 @@ class Tree:
         self.folder = os.path.abspath(folder)
         self.repo = os.path.abspath(repo or repository_root())
         self.source = os.path.join(self.folder, "source")
-        self.build = os.path.join(self.folder, "build")
+        self.build = os.path.join(self.source, "build", "tree")  # why there: the module's opening comment
         self.stubs = os.path.join(self.folder, "stubs")
         self.state_path = os.path.join(self.folder, "state.json")
         self.state = None
@@ -151,6 +163,8 @@ class Tree:
                 with open(self.state_path) as f:
                     old = json.load(f)
             keep = self._placeholder_paths(old) if self.is_kit else set()
+            if not os.path.isdir(self.build):
+                old = None   # nothing built here yet (or a folder of the old layout, its build beside source/)
             changed = sync_source(self.repo, self.source, self.folder, keep)
             if sandbox.is_root():
                 protect(self.folder)
