@@ -39,12 +39,23 @@ struct big_allocator {
     template <class U>
     big_allocator(const big_allocator<U>&) {}
 
-    T* allocate(std::size_t n) {
-        T* p = std::allocator<T>().allocate(n);
-        if (n * sizeof(T) >= huge_from) advise_huge_pages(p, n * sizeof(T));
-        return p;
+    // Every block starts on a cache line, and a block of huge_from bytes or
+    // more on a 2 MB page. malloc's own blocks start 16 bytes into a line
+    // (its header), so a 32-byte tree node pair or a group of 8 floats that
+    // the code lays out as one line would straddle two, and each read of it
+    // would cost two cache misses where one was meant.
+    static constexpr std::size_t cache_line = 64, huge_page = std::size_t(2) << 20;
+    static constexpr std::size_t alignment(std::size_t n) {
+        const std::size_t at_least = alignof(T) > cache_line ? alignof(T) : cache_line;
+        return n * sizeof(T) >= huge_from ? (huge_page > at_least ? huge_page : at_least) : at_least;
     }
-    void deallocate(T* p, std::size_t n) { std::allocator<T>().deallocate(p, n); }
+
+    T* allocate(std::size_t n) {
+        void* p = ::operator new(n * sizeof(T), std::align_val_t(alignment(n)));
+        if (n * sizeof(T) >= huge_from) advise_huge_pages(p, n * sizeof(T));
+        return static_cast<T*>(p);
+    }
+    void deallocate(T* p, std::size_t n) { ::operator delete(p, std::align_val_t(alignment(n))); }
 
     // resize() and vector(n) construct with no arguments: default-initialise
     // (nothing is written for a trivial type) instead of value-initialising.

@@ -372,3 +372,18 @@ TEST_CASE("big_vector holds what is written, in huge pages or not, and advise_hu
         for (size_t n : {size_t(0), size_t(1), size_t(4096), size_t(2 * 4096 + 3)}) advise_huge_pages(bytes.data() + from, n);
     CHECK(std::count(bytes.begin(), bytes.end(), 'x') == std::ptrdiff_t(bytes.size()));
 }
+
+TEST_CASE("big_vector starts every block on a cache line, and a block of 8 MB or more on a 2 MB page") {
+    // malloc's blocks start 16 bytes into a line: a pair of 32-byte tree
+    // nodes laid out as one line would then straddle two.
+    auto offset = [](const void* p, std::uintptr_t to) { return reinterpret_cast<std::uintptr_t>(p) % to; };
+    for (size_t n : {size_t(1), size_t(3), size_t(1000), size_t(100000)}) {
+        big_vector<float> small(n);
+        INFO(n << " floats");
+        CHECK(offset(small.data(), 64) == 0);
+    }
+    big_vector<std::uint64_t> big(size_t(3) << 19);  // 12 MB
+    CHECK(offset(big.data(), std::uintptr_t(2) << 20) == 0);
+    big.resize(big.size() * 2);  // a new block, freed with the alignment it was allocated with
+    CHECK(offset(big.data(), std::uintptr_t(2) << 20) == 0);
+}

@@ -356,7 +356,11 @@ bvh_tree build_bvh(size_t count, const std::function<bvh_box(size_t)>& box_of, i
     // where nodes are written (node_slots).
     const size_t most_tasks = 4 * count / task_size + 2;
     tree.nodes.resize(2 * count + most_tasks * task_block);
-    std::atomic<size_t> cursor{1};  // nodes[0] is the root
+    // nodes[0] is the root and nodes[1] stays unused, so that every pair of
+    // children starts at an even slot: with the array on a cache line
+    // (big_vector), the two boxes push_children reads are one line.
+    tree.nodes[1] = bvh_node{empty_box(), 0, 0};
+    std::atomic<size_t> cursor{2};
 
     // The top of the tree, one node at a time with parallel binning; every
     // range below task_size is left for the second phase.
