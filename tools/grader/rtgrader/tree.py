@@ -45,6 +45,11 @@ SKIP_AT_TOP = {".git", "out", "renders"}
 # of the course, and copying it would make every preview prepare the tree again.
 SKIP_FILES_AT_TOP = {"preview.json", "report.html", "results.json"}
 PRIVATE_DIRS = ("solutions", "tests/hidden", "tests/fixtures")
+# Where the CMake build lives inside the copy of the source (why there: the
+# opening comment). Its top folder is one the sync never copies (a name
+# starting with "build", _skipped) and protect() keeps root's alone.
+BUILD_IN_SOURCE = os.path.join("build", "tree")
+BUILD_TOP = BUILD_IN_SOURCE.split(os.sep)[0]
 
 
 def repository_root():
@@ -93,8 +98,8 @@ def sync_source(repo, dest, grading_folder=None, keep=()):
             shutil.copymode(src, dst)
             changed += 1
     for dirpath, dirnames, filenames in os.walk(dest):
-        if dirpath == dest:  # the tree's build (Tree.build) lives in the copy; nothing of it is copied
-            dirnames[:] = [d for d in dirnames if not d.startswith("build")]
+        if dirpath == dest:  # the tree's build (BUILD_IN_SOURCE) lives in the copy; nothing of it is copied
+            dirnames[:] = [d for d in dirnames if d != BUILD_TOP]
         for name in filenames:
             rel = os.path.relpath(os.path.join(dirpath, name), dest)
             if rel not in wanted:
@@ -109,8 +114,8 @@ def protect(folder):
     os.chmod(folder, 0o711)
     source = os.path.join(folder, "source")
     for dirpath, dirnames, filenames in os.walk(source):
-        if dirpath == source:   # the build (source/build/), below
-            dirnames[:] = [d for d in dirnames if d != "build"]
+        if dirpath == source:   # the build (BUILD_IN_SOURCE), below
+            dirnames[:] = [d for d in dirnames if d != BUILD_TOP]
         os.chmod(dirpath, 0o755)
         for name in filenames:
             os.chmod(os.path.join(dirpath, name), 0o644)
@@ -118,7 +123,7 @@ def protect(folder):
         path = os.path.join(source, rel)
         if os.path.isdir(path):
             os.chmod(path, 0o700)
-    for rel in ("source/build", "stubs"):
+    for rel in (os.path.join("source", BUILD_TOP), "stubs"):
         path = os.path.join(folder, rel)
         if os.path.isdir(path):
             os.chmod(path, 0o700)
@@ -144,7 +149,7 @@ class Tree:
         self.folder = os.path.abspath(folder)
         self.repo = os.path.abspath(repo or repository_root())
         self.source = os.path.join(self.folder, "source")
-        self.build = os.path.join(self.source, "build", "tree")  # why there: the module's opening comment
+        self.build = os.path.join(self.source, BUILD_IN_SOURCE)
         self.stubs = os.path.join(self.folder, "stubs")
         self.state_path = os.path.join(self.folder, "state.json")
         self.state = None
