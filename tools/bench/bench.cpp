@@ -681,7 +681,7 @@ flake_figures instanced_flake_row(int level, int fsize,
     return f;
 }
 
-void big_scenes(int size, bool flake, bool mesh_too) {
+void big_scenes(int size, bool flake, bool mesh_too, bool flakes_too = true) {
     double generation = 0;
     if (mesh_too) {
         const scene_description mesh = generated_scene(spd_database::tetra, 10, {3.2, -4.8, 2.4}, {0, 0, 0}, size,
@@ -689,6 +689,7 @@ void big_scenes(int size, bool flake, bool mesh_too) {
         tree_header("5. a 1M-triangle mesh: SPD tetra size 10", size);
         tree_row("tetra 10", mesh, size);
     }
+    if (!flakes_too) return;
     const int fsize = 1024;
     std::printf("\n6. the sphereflake, SPD balls, 1024x1024, one light with shadows: by instancing (levels 10 and 8; "
                 "rt-render's two-level tree, tools/render/instanced_path.hpp), then flat (level 8: the same spheres "
@@ -809,11 +810,12 @@ int main(int argc, char** argv) {
     app.add_option("--runs", runs, "runs per figure (the fastest is printed)")->check(CLI::Range(1, 50))->capture_default_str();
     app.add_flag("--wall", wall_clock, "wall-clock time instead of CPU time per thread");
     app.add_option("--size", size, "image side in pixels")->check(CLI::Range(8, 4096))->capture_default_str();
-    bool no_flake = false, flake_only = false, samples_only = false, features_only = false;
+    bool no_flake = false, flake_only = false, samples_only = false, features_only = false, trees_only = false;
     app.add_flag("--no-flake", no_flake, "leave out the flat 48-million-sphere sphereflake (section 6; its rows by instancing stay)");
     app.add_flag("--flake-only", flake_only, "section 6 only (the sphereflake by instancing and flat)");
     app.add_flag("--samples-only", samples_only, "only section 8, samples per second at 16 samples per pixel");
     app.add_flag("--features-only", features_only, "only section 2, each feature's cost (and the shadow rays')");
+    app.add_flag("--trees-only", trees_only, "only sections 4 and 5, the trees against Embree on random spheres and the tetra");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -843,6 +845,11 @@ int main(int argc, char** argv) {
         }
         if (features_only) {
             feature_table(size);
+            return 0;
+        }
+        if (trees_only) {
+            tree_table(tree_counts, size);
+            if (!quick) big_scenes(size, false, true, false);
             return 0;
         }
         sphere_table(counts, size);
