@@ -168,13 +168,22 @@ inline T direction_max(T dx, T dy, T dz) {
 // slab with its origin on one of its face planes; such a ray lies in the
 // closed slab for every t, so the slab constrains nothing, which is what
 // keeping the old value gives. Only selects: a loop over rays is vectorised.
+//
+// slab_faces is the part after the choice of faces, for a caller that has
+// already chosen them (a packet whose rays all point the same way along the
+// axis chooses once per box: rays_entering in fast_path_traversal.hpp).
+template <class T>
+[[gnu::always_inline]] inline void slab_faces(T near, T far, T o, T inv, T widen, T& enter, T& leave) {
+    const T t0 = (near - o) * inv;
+    const T t1 = (far - o) * inv * widen;
+    enter = t0 > enter ? t0 : enter;
+    leave = t1 < leave ? t1 : leave;
+}
+
 template <class T>
 [[gnu::always_inline]] inline void slab_axis(T lo, T hi, T o, T inv, T widen, T& enter, T& leave) {
     const bool down = inv < 0;
-    const T t0 = ((down ? hi : lo) - o) * inv;
-    const T t1 = ((down ? lo : hi) - o) * inv * widen;
-    enter = t0 > enter ? t0 : enter;
-    leave = t1 < leave ? t1 : leave;
+    slab_faces(down ? hi : lo, down ? lo : hi, o, inv, widen, enter, leave);
 }
 
 }  // namespace rt::render_tool

@@ -73,12 +73,9 @@ template <class T>
         for (int a = 0; a < 3; ++a) near[a] = slabs.down[a] ? b.hi[a] : b.lo[a], far[a] = slabs.down[a] ? b.lo[a] : b.hi[a];
         for (int k = 0; k < W; ++k) {
             float enter = 0, leave = float(best_t[k]) * slab_widen;
-            const float o[3] = {slabs.ox[k], slabs.oy[k], slabs.oz[k]}, inv[3] = {slabs.ix[k], slabs.iy[k], slabs.iz[k]};
-            for (int a = 0; a < 3; ++a) {
-                const float t0 = (near[a] - o[a]) * inv[a], t1 = (far[a] - o[a]) * inv[a] * slab_widen;
-                enter = t0 > enter ? t0 : enter;
-                leave = t1 < leave ? t1 : leave;
-            }
+            slab_faces(near[0], far[0], slabs.ox[k], slabs.ix[k], slab_widen, enter, leave);
+            slab_faces(near[1], far[1], slabs.oy[k], slabs.iy[k], slab_widen, enter, leave);
+            slab_faces(near[2], far[2], slabs.oz[k], slabs.iz[k], slab_widen, enter, leave);
             mask |= enter <= leave ? std::uint32_t(1) << k : 0;
         }
         return mask;
