@@ -113,7 +113,8 @@ TEST_CASE("tree = brute force: random spheres and triangles, some flat") {
 }
 
 TEST_CASE("build_bvh puts every pair of children in one cache line: an even slot of an array that starts on a line") {
-    // A packet's walk reads both children's boxes (push_children): 2 x 32
+    // The instanced packet walk reads both children's boxes (push_children
+    // in tools/render/instanced_packets.cpp), and collapse_to_wide too: 2 x 32
     // bytes, one line when the pair starts at an even slot of an aligned
     // array, two lines otherwise. 300,000 boxes: more than one build task
     // (2^17 objects each), whose blocks of slots must keep pairs even too.

@@ -358,7 +358,8 @@ bvh_tree build_bvh(size_t count, const std::function<bvh_box(size_t)>& box_of, i
     tree.nodes.resize(2 * count + most_tasks * task_block);
     // nodes[0] is the root and nodes[1] stays unused, so that every pair of
     // children starts at an even slot: with the array on a cache line
-    // (big_vector), the two boxes push_children reads are one line.
+    // (big_vector), the two boxes instanced_packets.cpp's push_children
+    // reads are one line.
     tree.nodes[1] = bvh_node{empty_box(), 0, 0};
     std::atomic<size_t> cursor{2};
 

@@ -127,7 +127,7 @@ struct context {
     // One line about the trees, for the render's report.
     std::string describe_trees() const {
         char line[200];
-        const bvh_tree& a = soa.sphere_tree;
+        const bvh_wide_tree& a = soa.sphere_tree;
         const bvh_wide_tree& b = soa.triangle_tree;
         std::snprintf(line, sizeof line, "tree: built in %.0f ms on %d threads, %.1f MB, %zu leaves, depth %zu",
                       1e3 * (a.build_seconds + b.build_seconds), render_threads(), double(a.bytes() + b.bytes()) / 1e6,

@@ -127,14 +127,13 @@ struct soa_scene {
     // sphere i and triangle j, and closest_hits answers with those numbers.
     bool tree = false;
     //
-    // Spheres and triangles get different trees, each the faster of the two
-    // on rt-bench's scenes (tools/bench/README.md): spheres a binary tree
-    // walked by a whole packet (traverse_packet: at a million random spheres
-    // it is still faster than one ray at a time through the wide tree),
-    // triangles the 4-wide tree walked one ray at a time (traverse_wide: on
-    // the million-triangle tetrahedron most packets straddle a silhouette,
-    // and single rays are three times faster there).
-    bvh_tree sphere_tree;
+    //
+    //
+    // Spheres and triangles each get a 4-wide tree (bvh_build.hpp), walked
+    // by a whole packet (traverse_packet), which hands the boxes that few of
+    // its rays enter to those rays one at a time; shadow rays walk it one
+    // at a time (traverse_wide).
+    bvh_wide_tree sphere_tree;
     bvh_wide_tree triangle_tree;
     // The scene's triangles and planes, for the rare exact decisions
     // (corners and plane_normal below).
@@ -252,10 +251,10 @@ struct soa_scene {
     // float can then only let through too much, never drop a hit, so the
     // tree gives the same closest object and t as brute force.
     void build_trees(const scene<double>& s) {
-        sphere_tree = build_bvh(s.spheres.size(), [&](size_t i) {
+        sphere_tree = collapse_to_wide(build_bvh(s.spheres.size(), [&](size_t i) {
             const auto& x = s.spheres[i];
             return float_box_around(x.center - vec3d(x.radius), x.center + vec3d(x.radius), box_pad);
-        });
+        }));
         triangle_tree = collapse_to_wide(build_bvh(s.triangles.size(), [&](size_t i) {
             const auto& x = s.triangles[i];
             return float_box_around(glm::min(x.a, glm::min(x.b, x.c)), glm::max(x.a, glm::max(x.b, x.c)), box_pad);

@@ -168,8 +168,8 @@ template <class T, sphere_mode SM>
 template <class T, sphere_mode SM>
 [[gnu::always_inline]] inline bool spheres_block(const soa_scene<T>& s, const shadow_ray<T>& r, T tmin, T tmax) {
     if (s.tree)
-        return traverse_any(s.sphere_tree, r.origin, r.direction, tmax, [&](size_t b, size_t e) {
-            for (size_t j = b; j < e; ++j)
+        return traverse_wide<true>(s.sphere_tree, r.origin, r.direction, tmax, [&](std::uint32_t b, std::uint32_t n) {
+            for (size_t j = b; j < size_t(b) + n; ++j)
                 if (sphere_blocks<T, SM>(s, j, r, tmin, tmax)) return true;
             return false;
         });

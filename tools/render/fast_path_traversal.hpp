@@ -1,7 +1,7 @@
 // fast_path_traversal.hpp — part of fast_path.cpp (see fast_path_arrays.hpp):
-// the walks through the trees. The slab test's float arithmetic, a packet's
-// walk of the binary tree, one shadow ray's walk of it, and one ray's walk
-// of the 4-wide tree.
+// the walks through the 4-wide trees. The slab test's float arithmetic, one
+// ray's walk (closest or any hit), and a packet's walk, which hands a box
+// that few of its rays enter to those rays one at a time.
 #pragma once
 #ifndef RT_FAST_PATH_PARTS
 #error "a part of fast_path.cpp: included by it, after its headers and its target pragma"
@@ -60,7 +60,8 @@ struct packet_slabs {
 // A box that at most this many rays of a packet enter is walked by those
 // rays one at a time (traverse_packet): deep in a big tree, where the
 // boxes are small, the packet's 32 lanes would mostly work for rays that
-// are not there.
+// are not there. (Measured on the binary tree this walk once used: 0 gave
+// 427 ns per ray on a million random spheres, 2 gave 402 and 6 gave 511.)
 constexpr int packet_hand_off = 2;
 
 // Which rays k of the packet enter box b before best_t[k] (a bit each).
@@ -88,108 +89,6 @@ template <class T>
         mask |= enter <= leave ? std::uint32_t(1) << k : 0;
     }
     return mask;
-}
-
-// The near child of inner node n first onto the stack last (so it is
-// visited first), judged along direction d.
-[[gnu::always_inline]] inline void push_children(const bvh_tree& tree, const bvh_node& n, const float (&d)[3],
-                                                 std::uint32_t* stack, int& top) {
-    const bvh_node &left = tree.nodes[n.first], &right = tree.nodes[n.first + 1];
-    const bvh_box &l = left.box, &r = right.box;
-    // Each inner child's own pair of children is one cache line away
-    // (build_bvh keeps pairs in one line): asked for now, it is on its way
-    // while the child's slab tests run. In a tree bigger than the caches
-    // (the 48-million-sphere flake's is 1.3 GB) each level of the walk
-    // would otherwise wait for memory.
-    if (left.count == 0) __builtin_prefetch(&tree.nodes[left.first]);
-    if (right.count == 0) __builtin_prefetch(&tree.nodes[right.first]);
-    float towards = 0;  // > 0 when the left child lies further along d
-    for (int a = 0; a < 3; ++a) towards += ((l.lo[a] + l.hi[a]) - (r.lo[a] + r.hi[a])) * d[a];
-    stack[top++] = towards > 0 ? n.first : n.first + 1;
-    stack[top++] = towards > 0 ? n.first + 1 : n.first;
-}
-
-// The subtree of node `start` for ray k of the packet alone: its own slab
-// tests and near-first order; leaf_one(k, b, e) tests objects [b, e) for it.
-template <class T, class LeafOne>
-inline void traverse_one_lane(const bvh_tree& tree, std::uint32_t start, int k, const packet_slabs& slabs,
-                              const packet<T>& p, const T* best_t, LeafOne&& leaf_one) {
-    const float d[3] = {float(p.dx[k]), float(p.dy[k]), float(p.dz[k])};
-    std::uint32_t stack[256];
-    int top = 0;
-    stack[top++] = start;
-    while (top > 0) {
-        const bvh_node& n = tree.nodes[stack[--top]];
-        float enter = 0, leave = float(best_t[k]) * slab_widen;
-        slab_axis(n.box.lo[0], n.box.hi[0], slabs.ox[k], slabs.ix[k], slab_widen, enter, leave);
-        slab_axis(n.box.lo[1], n.box.hi[1], slabs.oy[k], slabs.iy[k], slab_widen, enter, leave);
-        slab_axis(n.box.lo[2], n.box.hi[2], slabs.oz[k], slabs.iz[k], slab_widen, enter, leave);
-        if (!(enter <= leave)) continue;
-        if (n.count > 0) leaf_one(k, size_t(n.first), size_t(n.first) + n.count);
-        else push_children(tree, n, d, stack, top);
-    }
-}
-
-// Depth-first walk of a tree for the 32 rays of a packet. A node is
-// opened when some ray of the packet enters its box before that ray's
-// closest hit so far (best_t, updated by the leaves as they run); leaf(b, e)
-// tests objects [b, e) for every ray. Children are visited near one first,
-// judged along the first ray's direction, so the closest hits come early
-// and the far child's box is then often passed by. A node that at most
-// packet_hand_off rays enter is left to those rays one by one
-// (traverse_one_lane, leaf_one). Either way each ray meets every object
-// whose box it enters: the answers do not depend on which walk ran.
-template <class T, class Leaf, class LeafOne>
-[[gnu::always_inline]] inline void traverse_packet(const bvh_tree& tree, const packet<T>& p, const T* best_t, Leaf&& leaf,
-                                                   LeafOne&& leaf_one) {
-    if (tree.nodes.empty()) return;
-    const packet_slabs slabs(p);
-    const float d0[3] = {float(p.dx[0]), float(p.dy[0]), float(p.dz[0])};
-    std::uint32_t stack[256];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-        const std::uint32_t index = stack[--top];
-        const bvh_node& n = tree.nodes[index];
-        std::uint32_t rays = rays_entering(slabs, n.box, best_t);
-        if (rays == 0) continue;
-        if (__builtin_popcount(rays) <= packet_hand_off) {
-            for (; rays != 0; rays &= rays - 1) traverse_one_lane(tree, index, __builtin_ctz(rays), slabs, p, best_t, leaf_one);
-            continue;
-        }
-        if (n.count > 0) leaf(size_t(n.first), size_t(n.first) + n.count);
-        else push_children(tree, n, d0, stack, top);
-    }
-}
-
-// The same walk for one ray that only asks whether anything blocks it:
-// blocked(b, e) tests objects [b, e) and the walk stops at the first yes.
-template <class T, class Blocked>
-[[gnu::always_inline]] inline bool traverse_any(const bvh_tree& tree, const T (&origin)[3], const T (&direction)[3], T tmax, Blocked&& blocked) {
-    if (tree.nodes.empty()) return false;
-    const float o[3] = {float(origin[0]), float(origin[1]), float(origin[2])};
-    const float d[3] = {float(direction[0]), float(direction[1]), float(direction[2])};
-    const float inv[3] = {slab_reciprocal(d[0]), slab_reciprocal(d[1]), slab_reciprocal(d[2])};
-    const float limit = float(tmax) * slab_widen;
-    auto opened = [&](const bvh_box& b) {
-        float enter = 0, leave = limit;
-        for (int a = 0; a < 3; ++a) slab_axis(b.lo[a], b.hi[a], o[a], inv[a], slab_widen, enter, leave);
-        return enter <= leave;
-    };
-    std::uint32_t stack[256];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-        const bvh_node& n = tree.nodes[stack[--top]];
-        if (!opened(n.box)) continue;
-        if (n.count > 0) {
-            if (blocked(size_t(n.first), size_t(n.first) + n.count)) return true;
-            continue;
-        }
-        stack[top++] = n.first;
-        stack[top++] = n.first + 1;
-    }
-    return false;
 }
 
 // Four floats, one per child of a wide node: gcc's vector extension, which
@@ -259,17 +158,18 @@ struct wide_ray {
 // popped later is skipped unopened when the ray has meanwhile found a hit
 // nearer than its entry. leaf(first, count) tests a leaf's objects; for
 // closest hit (AnyHit false) it updates `best`, the limit; for any hit it
-// returns true at a blocker.
+// returns true at a blocker. `start` is where the walk begins: the root,
+// or a child of a node that a packet's walk hands to this ray alone.
 template <bool AnyHit, class T, class Leaf>
 [[gnu::always_inline]] inline bool traverse_wide(const bvh_wide_tree& tree, const T (&origin)[3], const T (&direction)[3], const T& best,
-                   Leaf&& leaf) {
+                   Leaf&& leaf, wide_entry start = wide_entry{0.0f, 0, 0}) {
     if (tree.nodes.empty()) return false;
     const wide_ray r(origin, direction);
     // best in float, rounded up a little: never below the true value.
     float limit = float(best) * slab_widen;
     wide_entry stack[512];  // at most wide - 1 per level and the tree is at most ~130 levels deep
     int top = 0;
-    wide_entry current{0.0f, 0, 0};  // the root
+    wide_entry current = start;
     for (;;) {
         if (current.count > 0) {
             if constexpr (AnyHit) {
@@ -292,5 +192,86 @@ template <bool AnyHit, class T, class Leaf>
             if (top == 0) return false;
             current = stack[--top];
         } while (current.enter > limit);
+    }
+}
+
+// A child of a wide node on traverse_packet's stack, with the rays of the
+// packet that enter its box (a bit each).
+struct packet_entry {
+    std::uint32_t child, count, rays;
+};
+
+// The children of wide node n that some of `rays` enter (rays_entering),
+// onto the stack farthest first, so the nearest is walked next: the order
+// of their boxes' centres along d. An inner child's node is asked for now
+// (both of its cache lines), so it is on its way while the rest is tested.
+template <class T>
+[[gnu::always_inline]] inline void push_entered_children(const bvh_wide_tree& tree, const bvh_wide_node& n,
+                                                         const packet_slabs& slabs, const T* best_t, std::uint32_t rays,
+                                                         const float (&d)[3], packet_entry* stack, int& top) {
+    packet_entry entered[wide];
+    float along[wide];  // the box centre's distance along d, doubled
+    int h = 0;
+    for (int i = 0; i < wide; ++i) {
+        if (n.count[i] == bvh_wide_node::empty_slot) continue;
+        const bvh_box b{{n.lo[0][i], n.lo[1][i], n.lo[2][i]}, {n.hi[0][i], n.hi[1][i], n.hi[2][i]}};
+        const std::uint32_t in = rays_entering(slabs, b, best_t) & rays;
+        if (in == 0) continue;
+        if (n.count[i] == 0) {
+            const char* node = reinterpret_cast<const char*>(&tree.nodes[n.child[i]]);
+            __builtin_prefetch(node), __builtin_prefetch(node + 64);
+        }
+        float x = 0;
+        for (int a = 0; a < 3; ++a) x += (b.lo[a] + b.hi[a]) * d[a];
+        int j = h++;  // at most four: insertion sort, farthest first
+        for (; j > 0 && along[j - 1] < x; --j) entered[j] = entered[j - 1], along[j] = along[j - 1];
+        entered[j] = packet_entry{n.child[i], n.count[i], in}, along[j] = x;
+    }
+    for (int i = 0; i < h; ++i) stack[top++] = entered[i];
+}
+
+// Depth-first walk of a wide tree for the 32 rays of a packet. A node's
+// four child boxes are tested for every ray (rays_entering, against each
+// ray's closest hit so far, best_t, which the leaves update as they run);
+// the children some ray enters are pushed, the nearest last so that it is
+// walked first, judged by the boxes' centres along the first ray's
+// direction. leaf(b, e) tests objects [b, e) for every ray. A child that
+// at most packet_hand_off rays enter is left to those rays one by one
+// (traverse_wide from that child, leaf_one(k, b, e) for ray k). Either way
+// each ray meets every object whose box it enters: the answers do not
+// depend on which walk ran.
+//
+// Why four children, not two: in a tree bigger than the caches each level
+// is a trip to memory, and four children per node halve the levels. On
+// the level-8 sphereflake (48 million spheres, a 1.3 GB tree of depth 35)
+// the binary walk's primary rays took 354 ns each, this walk's 212
+// (rt-bench --flake-only, one run each, tools/bench/README.md).
+template <class T, class Leaf, class LeafOne>
+[[gnu::always_inline]] inline void traverse_packet(const bvh_wide_tree& tree, const packet<T>& p, const T* best_t, Leaf&& leaf,
+                                                   LeafOne&& leaf_one) {
+    if (tree.nodes.empty()) return;
+    const packet_slabs slabs(p);
+    const float d0[3] = {float(p.dx[0]), float(p.dy[0]), float(p.dz[0])};
+    packet_entry stack[512];  // at most wide - 1 per level, as traverse_wide's
+    int top = 0;
+    stack[top++] = packet_entry{0, 0, ~std::uint32_t(0)};  // the root, for every ray
+    while (top > 0) {
+        const packet_entry e = stack[--top];
+        if (__builtin_popcount(e.rays) <= packet_hand_off) {
+            for (std::uint32_t rays = e.rays; rays != 0; rays &= rays - 1) {
+                const int k = __builtin_ctz(rays);
+                const T origin[3] = {p.ox[k], p.oy[k], p.oz[k]}, direction[3] = {p.dx[k], p.dy[k], p.dz[k]};
+                traverse_wide<false>(
+                    tree, origin, direction, best_t[k],
+                    [&](std::uint32_t b, std::uint32_t n) { leaf_one(k, size_t(b), size_t(b) + n); },
+                    wide_entry{0.0f, e.child, e.count});
+            }
+            continue;
+        }
+        if (e.count > 0) {
+            leaf(size_t(e.child), size_t(e.child) + e.count);
+            continue;
+        }
+        push_entered_children(tree, tree.nodes[e.child], slabs, best_t, e.rays, d0, stack, top);
     }
 }

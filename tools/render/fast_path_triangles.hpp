@@ -1,7 +1,7 @@
 // fast_path_triangles.hpp — part of fast_path.cpp (see fast_path_arrays.hpp):
 // the triangle lane loops (the kernels, triangle_t and triangle_t_exact,
-// are in fast_path_kernels.hpp): brute force over a packet, one ray's walk
-// of the wide tree, and the shadow ray's any hit. All three run the same
+// are in fast_path_kernels.hpp): brute force over a packet, the packet's
+// walk of the wide tree, and the shadow ray's any hit. All three run the same
 // per-lane arithmetic (triangle_lane_t), so they agree to the bit.
 #pragma once
 #ifndef RT_FAST_PATH_PARTS
@@ -109,13 +109,16 @@ template <class T, bool CommonOrigin>
     return near_any != 0;
 }
 
-// Triangle i against the packet, skipped when no ray comes near it. With a
-// common origin, s = origin - a and q = s x e1 leave the lane loop.
-template <class T, bool CommonOrigin>
+// Triangle i against the packet. In brute force (InTree false) it is
+// skipped when no ray comes near it; in a tree's leaf the boxes have done
+// that, and the hits carry the scene's numbers with the tie rule
+// (packet_best::keep). With a common origin, s = origin - a and q = s x e1
+// leave the lane loop.
+template <class T, bool CommonOrigin, bool InTree = false>
 [[gnu::always_inline]] inline void triangle_closest(const soa_scene<T>& s, size_t i, const packet<T>& p, T tmin, packet_best<T>& best) {
     using I = index_t<T>;
-    const I id = I(s.sphere_count + s.plane_count) + I(i);
-    if (!triangle_near_packet<T, CommonOrigin>(s, i, p, best)) return;
+    const I id = InTree ? I(s.triangle_number(i)) : I(s.sphere_count + s.plane_count) + I(i);
+    if (!InTree && !triangle_near_packet<T, CommonOrigin>(s, i, p, best)) return;
     const T e1x = s.e1x[i], e1y = s.e1y[i], e1z = s.e1z[i], e2x = s.e2x[i], e2y = s.e2y[i], e2z = s.e2z[i];
     const T scale = flat_scale(e1x, e1y, e1z, e2x, e2y, e2z), tiny = flat_tiny<T>();
     int unsure = 0;
@@ -123,7 +126,7 @@ template <class T, bool CommonOrigin>
         const T sx = p.ox[0] - s.ax[i], sy = p.oy[0] - s.ay[i], sz = p.oz[0] - s.az[i];
         const T qx = sy * e1z - sz * e1y, qy = sz * e1x - sx * e1z, qz = sx * e1y - sy * e1x;
         for (int k = 0; k < W; ++k)
-            best.keep(k,
+            best.template keep<InTree>(k,
                       triangle_t(sx, sy, sz, qx, qy, qz, e1x, e1y, e1z, e2x, e2y, e2z, p.dx[k], p.dy[k], p.dz[k], tmin,
                                  scale * best.d_max[k] + tiny, unsure),
                       id);
@@ -131,7 +134,7 @@ template <class T, bool CommonOrigin>
         for (int k = 0; k < W; ++k) {
             const T sx = p.ox[k] - s.ax[i], sy = p.oy[k] - s.ay[i], sz = p.oz[k] - s.az[i];
             const T qx = sy * e1z - sz * e1y, qy = sz * e1x - sx * e1z, qz = sx * e1y - sy * e1x;
-            best.keep(k,
+            best.template keep<InTree>(k,
                       triangle_t(sx, sy, sz, qx, qy, qz, e1x, e1y, e1z, e2x, e2y, e2z, p.dx[k], p.dy[k], p.dz[k], tmin,
                                  scale * best.d_max[k] + tiny, unsure),
                       id);
@@ -140,35 +143,32 @@ template <class T, bool CommonOrigin>
     if (unsure)  // nearly parallel or degenerate: decide exactly (keep takes a t once)
         for (int k = 0; k < W; ++k) {
             const int o = CommonOrigin ? 0 : k;
-            best.keep(k, triangle_exact_t(s, i, p.ox[o], p.oy[o], p.oz[o], p.dx[k], p.dy[k], p.dz[k], tmin), id);
+            best.template keep<InTree>(k, triangle_exact_t(s, i, p.ox[o], p.oy[o], p.oz[o], p.dx[k], p.dy[k], p.dz[k], tmin), id);
         }
 }
 
-// One ray at a time through the wide tree (see soa_scene). A leaf's
-// triangles are tested as one group of leaf_lanes lanes with the
-// brute-force arithmetic, so t is the same to the bit.
+// The packet's walk of the wide tree (traverse_packet, see soa_scene): a
+// leaf's triangles against every ray, by triangle_closest with the scene's
+// numbers and the tie rule; a box few rays enter, against each of those
+// rays alone, as one group of leaf_lanes lanes with the same arithmetic.
+// Either way t is the brute-force kernel's to the bit.
 template <class T, bool CommonOrigin>
 [[gnu::always_inline]] inline void triangles_closest_in_tree(const soa_scene<T>& s, const packet<T>& p, T tmin, packet_best<T>& best) {
     using I = index_t<T>;
-    for (int k = 0; k < W; ++k) {
-        const int o = CommonOrigin ? 0 : k;
-        const T ox = p.ox[o], oy = p.oy[o], oz = p.oz[o], dx = p.dx[k], dy = p.dy[k], dz = p.dz[k];
-        const T origin[3] = {ox, oy, oz}, direction[3] = {dx, dy, dz};
-        T bt = best.t[k];
-        I bo = best.object[k];
-        traverse_wide<false>(s.triangle_tree, origin, direction, bt, [&](std::uint32_t b, std::uint32_t n) {
-            for (size_t g = b; g < size_t(b) + n; g += leaf_lanes) {
-                const triangle_group<T> group(s, g, size_t(b) + n, ox, oy, oz, dx, dy, dz, best.d_max[k], tmin);
-                for (int i = 0; i < leaf_lanes && g + size_t(i) < size_t(b) + n; ++i) {
-                    if (!(group.t[i] <= bt)) continue;  // the usual case: no number needed
-                    const I id = I(s.triangle_number(g + size_t(i)));
-                    if (group.t[i] < bt || id < bo) bt = group.t[i], bo = id;  // at a tie, the lowest number
-                }
+    traverse_packet(
+        s.triangle_tree, p, best.t,
+        [&](size_t b, size_t e) {
+            for (size_t i = b; i < e; ++i) triangle_closest<T, CommonOrigin, true>(s, i, p, tmin, best);
+        },
+        [&](int k, size_t b, size_t e) {
+            const int o = CommonOrigin ? 0 : k;
+            const T ox = p.ox[o], oy = p.oy[o], oz = p.oz[o], dx = p.dx[k], dy = p.dy[k], dz = p.dz[k];
+            for (size_t g = b; g < e; g += leaf_lanes) {
+                const triangle_group<T> group(s, g, e, ox, oy, oz, dx, dy, dz, best.d_max[k], tmin);
+                for (int i = 0; i < leaf_lanes && g + size_t(i) < e; ++i)
+                    best.template keep<true>(k, group.t[i], I(s.triangle_number(g + size_t(i))));
             }
-            return false;
         });
-        best.t[k] = bt, best.object[k] = bo;
-    }
 }
 
 // Every triangle against the packet.
