@@ -127,8 +127,6 @@ struct soa_scene {
     // sphere i and triangle j, and closest_hits answers with those numbers.
     bool tree = false;
     //
-    //
-    //
     // Spheres and triangles each get a 4-wide tree (bvh_build.hpp), walked
     // by a whole packet (traverse_packet), which hands the boxes that few of
     // its rays enter to those rays one at a time; shadow rays walk it one

@@ -244,8 +244,8 @@ template <class T>
 // Why four children, not two: in a tree bigger than the caches each level
 // is a trip to memory, and four children per node halve the levels. On
 // the level-8 sphereflake (48 million spheres, a 1.3 GB tree of depth 35)
-// the binary walk's primary rays took 354 ns each, this walk's 212
-// (rt-bench --flake-only, one run each, tools/bench/README.md).
+// the binary walk's primary rays took 305 ns each, this walk's 233
+// (rt-bench --flake-only, the two binaries run in turn; tools/bench/README.md).
 template <class T, class Leaf, class LeafOne>
 [[gnu::always_inline]] inline void traverse_packet(const bvh_wide_tree& tree, const packet<T>& p, const T* best_t, Leaf&& leaf,
                                                    LeafOne&& leaf_one) {

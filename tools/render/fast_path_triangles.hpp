@@ -166,7 +166,8 @@ template <class T, bool CommonOrigin>
             for (size_t g = b; g < e; g += leaf_lanes) {
                 const triangle_group<T> group(s, g, e, ox, oy, oz, dx, dy, dz, best.d_max[k], tmin);
                 for (int i = 0; i < leaf_lanes && g + size_t(i) < e; ++i)
-                    best.template keep<true>(k, group.t[i], I(s.triangle_number(g + size_t(i))));
+                    if (group.t[i] <= best.t[k])  // the usual case, a miss, needs no number
+                        best.template keep<true>(k, group.t[i], I(s.triangle_number(g + size_t(i))));
             }
         });
 }
