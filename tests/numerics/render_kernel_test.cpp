@@ -107,7 +107,7 @@ void check_tiny_directions() {
         }
         alignas(64) T t[rk::W];
         alignas(64) rk::index_t<T> object[rk::W];
-        rk::closest_hits<T, SM, false, false, true>(soa, p, tmin, t, object);
+        rk::closest_hits<T, SM, true>(soa, p, tmin, t, object);
         for (int k = 0; k < rk::W; ++k) {
             const ray<T> r{vec3<T>(0, 0, 0), dirs[g + size_t(k)]};
             const study::reference_answer ref = nearest_reference(world, r, tmin);
@@ -119,8 +119,8 @@ void check_tiny_directions() {
             if (ref.hit) worst = std::max(worst, double(std::fabs((long double)t[k] - ref.t) / ref.t));
             // Any hit: blocked before twice the crossing, free before half of it.
             const T full = ref.hit ? T(2 * ref.t) : infinity<T>, half = ref.hit ? T(ref.t / 2) : infinity<T>;
-            if (rk::any_hit<T, SM, false, false>(soa, r, tmin, full) != ref.hit) ++wrong_any;
-            if (ref.hit && rk::any_hit<T, SM, false, false>(soa, r, tmin, half)) ++wrong_any;
+            if (rk::any_hit<T, SM>(soa, r, tmin, full) != ref.hit) ++wrong_any;
+            if (ref.hit && rk::any_hit<T, SM>(soa, r, tmin, half)) ++wrong_any;
         }
     }
     INFO("hits in the reference: " << hits << " of " << dirs.size());
@@ -164,8 +164,8 @@ TEST_CASE("render brute-force triangle cull: tiny far triangles give brute force
         }
         alignas(64) T tb[rk::W], tt[rk::W];
         alignas(64) rk::index_t<T> ob[rk::W], ot[rk::W];
-        rk::closest_hits<T, rk::sphere_mode::none, false, true, true>(brute, p, T(0), tb, ob);
-        rk::closest_hits<T, rk::sphere_mode::none, false, true, true>(tree, p, T(0), tt, ot);
+        rk::closest_hits<T, rk::sphere_mode::robust, true>(brute, p, T(0), tb, ob);
+        rk::closest_hits<T, rk::sphere_mode::robust, true>(tree, p, T(0), tt, ot);
         for (int k = 0; k < rk::W; ++k) {
             hits += ot[k] >= 0;
             differ += ob[k] != ot[k] || std::memcmp(&tb[k], &tt[k], sizeof(T)) != 0;

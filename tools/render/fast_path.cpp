@@ -13,13 +13,19 @@
 // (fast_path_shadows.hpp); one that shade() asks unexpectedly goes alone,
 // with objects in the lanes instead.
 //
-// Specialisation. Every loop the scene does not need is removed at compile
-// time: the kernels are templates on the scalar type, the sphere
-// formulation (none, plain, robust), whether there are planes, triangles
-// and lights, and whether all rays of a packet share their origin (a
-// pinhole camera's primary rays do, so terms that depend only on the origin
-// and the object move out of the lane loop). dispatch() picks the one
-// instantiation the plan asks for.
+// Specialisation. What changes the inner loops is a template argument:
+// the scalar type, the sphere formulation (plain or robust), and whether
+// all rays of a packet share their origin (a pinhole camera's primary rays
+// do, so terms that depend only on the origin and the object move out of
+// the lane loop). with_precision_and_mode() picks the instantiation the
+// plan asks for. Whether the scene has spheres, planes, triangles or
+// lights is a plain branch, once per packet or per shadow ray: it costs
+// nothing a benchmark can see, while those four choices as template
+// arguments multiplied the code compiled (67 instantiations of the packet
+// query against 15, 3.1 MB of code against 0.8, and 89-91 s to compile a
+// copy of this file against 21-22 s). The pixel loop alone is compiled lit
+// and unlit (tile_row_render), so an unlit scene carries no shadow
+// bookkeeping.
 //
 // Misses. Each lane function returns the hit's t, or +infinity for a miss;
 // "t < closest so far" is false for infinity and for NaN, so neither a miss
@@ -166,12 +172,12 @@ struct context {
         }
     }
 
-    template <sphere_mode SM, bool Planes, bool Tris>
+    template <sphere_mode SM>
     void trace(const packet<T>& p, T* t, index_t<T>* object) const {
         if (camera.type == camera_description::kind::pinhole)
-            closest_hits<T, SM, Planes, Tris, true>(soa, p, tmin, t, object);
+            closest_hits<T, SM, true>(soa, p, tmin, t, object);
         else
-            closest_hits<T, SM, Planes, Tris, false>(soa, p, tmin, t, object);
+            closest_hits<T, SM, false>(soa, p, tmin, t, object);
     }
 
     // The hit point of object o put back on o's surface, for shading. The
@@ -234,7 +240,113 @@ struct context {
     }
 };
 
-template <class T, sphere_mode SM, bool Planes, bool Tris, bool Lights>
+// One tile row of a render: its packets traced, shaded and written to the
+// picture. Lit (the scene has lights) is the one choice the pixel loop
+// makes at compile time: a lit row asks each packet's shadow rays ahead and
+// traces them W at a time (fast_path_shadows.hpp), an unlit one carries
+// none of that bookkeeping. The traversal and the kernels are the same
+// functions either way.
+template <class T, sphere_mode SM, bool Lit>
+class tile_row_render {
+public:
+    tile_row_render(const context<T>& ctx, const scene_description& d, int width, int height, int tile_row)
+        : ctx_(ctx), d_(d), width_(width), height_(height), row0_(tile_row * tile_h) {
+        if constexpr (Lit)
+            occluded_ = [this](const ray<T>& r, const interval<T>& range) {
+                return batch_.template replay<SM>(ctx_.soa, lane_, r, range);
+            };
+    }
+    tile_row_render(const tile_row_render&) = delete;  // occluded_ holds `this`
+    tile_row_render& operator=(const tile_row_render&) = delete;
+
+    // One ray through each pixel's centre.
+    void one_sample(image& img) {
+        for (int col0 = 0; col0 < width_; col0 += tile_w) {
+            ctx_.fill(p_, col0, row0_);
+            trace_and_shade(col0);
+            for (int k = 0; k < W; ++k)
+                if (inside(col0, k)) img.at(col0 + k % tile_w, row0_ + k / tile_w) = colour_[k];
+        }
+    }
+
+    // spp samples per pixel, one in each cell of a strata x strata grid over
+    // the pixel's square, jittered by the pixel's own stream: the picture is
+    // the same on every run and thread count. A box filter: the pixel is the
+    // samples' mean.
+    void samples(image& img, int spp, std::uint64_t seed) {
+        const int strata = int(std::lround(std::sqrt(double(spp))));  // spp is a square: strata x strata cells
+        std::vector<pcg32> streams;
+        for (int col0 = 0; col0 < width_; col0 += tile_w) {
+            streams.clear();
+            for (int k = 0; k < W; ++k)
+                streams.push_back(pixel_stream(seed, std::min(col0 + k % tile_w, width_ - 1),
+                                               std::min(row0_ + k / tile_w, height_ - 1), width_));
+            color sum[W];
+            for (color& c : sum) c = color(0.0f);
+            ch11::vec2<T> film[W];
+            for (int sample = 0; sample < spp; ++sample) {
+                for (int k = 0; k < W; ++k) {
+                    const T u = streams[size_t(k)].template uniform<T>(), v = streams[size_t(k)].template uniform<T>();
+                    film[k] = ch11::stratified_sample(sample, strata, ch11::vec2<T>(u, v));
+                }
+                ctx_.fill_samples(p_, col0, row0_, film);
+                trace_and_shade(col0);
+                for (int k = 0; k < W; ++k)
+                    if (inside(col0, k)) sum[k] += colour_[k];
+            }
+            for (int k = 0; k < W; ++k)
+                if (inside(col0, k)) img.at(col0 + k % tile_w, row0_ + k / tile_w) = sum[k] / float(spp);
+        }
+    }
+
+    long shadow_rays() const { return shadows_; }
+
+private:
+    bool inside(int col0, int k) const { return col0 + k % tile_w < width_ && row0_ + k / tile_w < height_; }
+
+    // The colours of the packet p_, lanes inside the picture. Every hit is
+    // found first, so that a lit scene's shadow rays are asked ahead.
+    void trace_and_shade(int col0) {
+        ctx_.template trace<SM>(p_, t_, object_);
+        for (int k = 0; k < W; ++k) {
+            has_hit_[k] = inside(col0, k) && object_[k] >= 0;
+            if (has_hit_[k]) hit_[k] = ctx_.hit_of(p_, t_[k], size_t(object_[k]), k);
+        }
+        if constexpr (Lit) {
+            ask_every_light(batch_, d_.world.lights, hit_, has_hit_);
+            batch_.template answer<SM>(ctx_.soa);
+            shadows_ += long(batch_.size());
+        }
+        for (int k = 0; k < W; ++k) {
+            if (!inside(col0, k)) continue;
+            lane_ = k;
+            const auto& h = hit_[k];
+            if (object_[k] < 0)
+                colour_[k] = d_.world.background;
+            else if constexpr (Lit)
+                colour_[k] = ch06::shade(h.point, h.normal, -h.direction, h.m, d_.world.lights, d_.world.ambient, occluded_);
+            else
+                colour_[k] = unlit_colour(h.m, h.normal, h.direction);
+        }
+        if constexpr (Lit) shadows_ += batch_.alone, batch_.alone = 0;
+    }
+
+    const context<T>& ctx_;
+    const scene_description& d_;
+    const int width_, height_, row0_;
+    packet<T> p_;
+    alignas(64) T t_[W];
+    alignas(64) index_t<T> object_[W];
+    typename context<T>::surface_hit hit_[W];
+    bool has_hit_[W];
+    color colour_[W];
+    shadow_batch<T> batch_;
+    int lane_ = 0;  // the lane shade() is shading: the one whose shadow rays replay answers
+    ch06::occlusion_test<T> occluded_;
+    long shadows_ = 0;
+};
+
+template <class T, sphere_mode SM>
 image render_with(const scene_description& d, int width, int height, bool tree, int spp, std::uint64_t seed,
                   render_stats& stats) {
     const stopwatch setup;
@@ -246,89 +358,22 @@ image render_with(const scene_description& d, int width, int height, bool tree, 
     if (spp > 1 && ctx.camera.type != camera_description::kind::pinhole)
         throw std::invalid_argument("several samples per pixel are drawn through a pinhole camera (chapter 11's), not "
                                     "an orthographic one");
-    const int strata = int(std::lround(std::sqrt(double(spp))));  // spp is a square: strata x strata cells
     image img(width, height);
     std::atomic<long> shadow_rays{0};
-    for_each_row((height + tile_h - 1) / tile_h, [&](int tile_row) {
-        const int row0 = tile_row * tile_h;
-        long shadows = 0;
-        auto inside = [&](int col0, int k) { return col0 + k % tile_w < width && row0 + k / tile_w < height; };
-        packet<T> p;
-        alignas(64) T t[W];
-        alignas(64) index_t<T> object[W];
-        shadow_batch<T> batch;
-        int lane = 0;  // the lane shade() is shading
-        ch06::occlusion_test<T> occluded;
-        if constexpr (Lights)
-            occluded = [&](const ray<T>& r, const interval<T>& range) {
-                return batch.template replay<SM, Planes, Tris>(ctx.soa, lane, r, range);
-            };
-        // The colours of the packet just traced, lanes inside the picture.
-        // Every hit is found first, so that a lit scene's shadow rays are
-        // asked ahead and traced W at a time (fast_path_shadows.hpp).
-        color colour[W];
-        typename context<T>::surface_hit hit[W];
-        bool has_hit[W];
-        auto shade_packet = [&](int col0) {
-            for (int k = 0; k < W; ++k) {
-                has_hit[k] = inside(col0, k) && object[k] >= 0;
-                if (has_hit[k]) hit[k] = ctx.hit_of(p, t[k], size_t(object[k]), k);
-            }
-            if constexpr (Lights) {
-                ask_every_light(batch, d.world.lights, hit, has_hit);
-                batch.template answer<SM, Planes, Tris>(ctx.soa);
-                shadows += long(batch.size());
-            }
-            for (int k = 0; k < W; ++k) {
-                if (!inside(col0, k)) continue;
-                lane = k;
-                const auto& h = hit[k];
-                if (object[k] < 0)
-                    colour[k] = d.world.background;
-                else if constexpr (Lights)
-                    colour[k] = ch06::shade(h.point, h.normal, -h.direction, h.m, d.world.lights, d.world.ambient, occluded);
-                else
-                    colour[k] = unlit_colour(h.m, h.normal, h.direction);
-            }
-            if constexpr (Lights) shadows += batch.alone, batch.alone = 0;
-        };
-        std::vector<pcg32> streams;
-        for (int col0 = 0; col0 < width; col0 += tile_w) {
-            if (spp == 1) {  // one ray through each pixel's centre
-                ctx.fill(p, col0, row0);
-                ctx.template trace<SM, Planes, Tris>(p, t, object);
-                shade_packet(col0);
-                for (int k = 0; k < W; ++k)
-                    if (inside(col0, k)) img.at(col0 + k % tile_w, row0 + k / tile_w) = colour[k];
-                continue;
-            }
-            // spp samples per pixel, one in each cell of a strata x strata grid
-            // over the pixel's square, jittered by the pixel's own stream: the
-            // picture is the same on every run and thread count. A box filter:
-            // the pixel is the samples' mean.
-            streams.clear();
-            for (int k = 0; k < W; ++k)
-                streams.push_back(pixel_stream(seed, std::min(col0 + k % tile_w, width - 1),
-                                               std::min(row0 + k / tile_w, height - 1), width));
-            color sum[W];
-            for (color& c : sum) c = color(0.0f);
-            ch11::vec2<T> film[W];
-            for (int sample = 0; sample < spp; ++sample) {
-                for (int k = 0; k < W; ++k) {
-                    const T u = streams[size_t(k)].template uniform<T>(), v = streams[size_t(k)].template uniform<T>();
-                    film[k] = ch11::stratified_sample(sample, strata, ch11::vec2<T>(u, v));
-                }
-                ctx.fill_samples(p, col0, row0, film);
-                ctx.template trace<SM, Planes, Tris>(p, t, object);
-                shade_packet(col0);
-                for (int k = 0; k < W; ++k)
-                    if (inside(col0, k)) sum[k] += colour[k];
-            }
-            for (int k = 0; k < W; ++k)
-                if (inside(col0, k)) img.at(col0 + k % tile_w, row0 + k / tile_w) = sum[k] / float(spp);
-        }
-        shadow_rays += shadows;
-    });
+    auto every_row = [&](auto lit) {
+        for_each_row((height + tile_h - 1) / tile_h, [&](int tile_row) {
+            tile_row_render<T, SM, decltype(lit)::value> row(ctx, d, width, height, tile_row);
+            if (spp == 1)
+                row.one_sample(img);
+            else
+                row.samples(img, spp, seed);
+            shadow_rays += row.shadow_rays();
+        });
+    };
+    if (d.world.lights.empty())
+        every_row(std::false_type{});
+    else
+        every_row(std::true_type{});
     const long primary = long(width) * long(height) * long(spp);
     stats.rays = primary + shadow_rays.load();
     if (spp > 1) stats.samples = primary;
@@ -338,7 +383,7 @@ image render_with(const scene_description& d, int width, int height, bool tree, 
 // The primary rays of tile row `tile_row`, traced; then
 // visit(p, t, object, k, col, row) for every lane k inside the picture
 // (pixel col, row).
-template <class T, sphere_mode SM, bool Planes, bool Tris, class Visit>
+template <class T, sphere_mode SM, class Visit>
 void trace_tile_row(const context<T>& ctx, int width, int height, int tile_row, Visit&& visit) {
     const int row0 = tile_row * tile_h;
     packet<T> p;
@@ -346,7 +391,7 @@ void trace_tile_row(const context<T>& ctx, int width, int height, int tile_row, 
     alignas(64) index_t<T> object[W];
     for (int col0 = 0; col0 < width; col0 += tile_w) {
         ctx.fill(p, col0, row0);
-        ctx.template trace<SM, Planes, Tris>(p, t, object);
+        ctx.template trace<SM>(p, t, object);
         for (int k = 0; k < W; ++k) {
             const int col = col0 + k % tile_w, row = row0 + k / tile_w;
             if (col < width && row < height) visit(p, t, object, k, col, row);
@@ -354,14 +399,14 @@ void trace_tile_row(const context<T>& ctx, int width, int height, int tile_row, 
     }
 }
 
-template <class T, sphere_mode SM, bool Planes, bool Tris>
+template <class T, sphere_mode SM>
 primary_hits trace_with(const scene_description& d, int width, int height, bool tree) {
     const context<T> ctx(d, width, height, tree);
     primary_hits hits;
     hits.object.assign(size_t(width) * size_t(height), -1);
     hits.t.assign(size_t(width) * size_t(height), 0);
     for_each_row((height + tile_h - 1) / tile_h, [&](int tile_row) {
-        trace_tile_row<T, SM, Planes, Tris>(ctx, width, height, tile_row,
+        trace_tile_row<T, SM>(ctx, width, height, tile_row,
                                             [&](const packet<T>&, const T* t, const index_t<T>* object, int k, int col, int row) {
                                                 const size_t i = size_t(row) * size_t(width) + size_t(col);
                                                 hits.object[i] = object[k] < 0 ? -1 : int(object[k]);
@@ -372,12 +417,12 @@ primary_hits trace_with(const scene_description& d, int width, int height, bool 
 }
 
 // How many pixels' primary rays hit something, on every core.
-template <class T, sphere_mode SM, bool Planes, bool Tris>
+template <class T, sphere_mode SM>
 long count_hits(const context<T>& ctx, int width, int height) {
     std::atomic<long> hits{0};
     for_each_row((height + tile_h - 1) / tile_h, [&](int tile_row) {
         long row_hits = 0;
-        trace_tile_row<T, SM, Planes, Tris>(
+        trace_tile_row<T, SM>(
             ctx, width, height, tile_row,
             [&](const packet<T>&, const T*, const index_t<T>* object, int k, int, int) { row_hits += object[k] >= 0; });
         hits += row_hits;
@@ -385,7 +430,7 @@ long count_hits(const context<T>& ctx, int width, int height) {
     return hits.load();
 }
 
-template <class T, sphere_mode SM, bool Planes, bool Tris>
+template <class T, sphere_mode SM>
 long count_with(const scene_description& d, int width, int height, bool tree, int repeat, render_stats* stats) {
     const stopwatch setup;
     const double setup_cpu = process_cpu_seconds();
@@ -395,7 +440,7 @@ long count_with(const scene_description& d, int width, int height, bool tree, in
         stats->setup_cpu_seconds = process_cpu_seconds() - setup_cpu;
     }
     long hits = 0;
-    for (int r = 0; r < repeat; ++r) hits = count_hits<T, SM, Planes, Tris>(ctx, width, height);
+    for (int r = 0; r < repeat; ++r) hits = count_hits<T, SM>(ctx, width, height);
     return hits;
 }
 
@@ -409,7 +454,7 @@ long count_with(const scene_description& d, int width, int height, bool tree, in
 // chapter 06's shade() with the packets' answers, counting the rays shade()
 // asks that were not asked ahead (replay traces those alone): none, when
 // the render's packets answer every shadow ray.
-template <class T, sphere_mode SM, bool Planes, bool Tris>
+template <class T, sphere_mode SM>
 shadow_figures shadows_with(const scene_description& d, int width, int height, bool tree, const pass_timer& timed) {
     const context<T> ctx(d, width, height, tree);
     const int tile_rows = (height + tile_h - 1) / tile_h, tile_cols = (width + tile_w - 1) / tile_w;
@@ -421,7 +466,7 @@ shadow_figures shadows_with(const scene_description& d, int width, int height, b
     std::vector<tile> tiles(static_cast<size_t>(tile_rows) * static_cast<size_t>(tile_cols));
     auto tile_at = [&](int tile_row, int c) -> tile& { return tiles[size_t(tile_row) * size_t(tile_cols) + size_t(c)]; };
     for_each_row(tile_rows, [&](int tile_row) {
-        trace_tile_row<T, SM, Planes, Tris>(
+        trace_tile_row<T, SM>(
             ctx, width, height, tile_row,
             [&](const packet<T>& p, const T* t, const index_t<T>* object, int k, int col, int) {
                 tile& x = tile_at(tile_row, col / tile_w);
@@ -442,20 +487,20 @@ shadow_figures shadows_with(const scene_description& d, int width, int height, b
     };
     shadow_figures f;
     f.primary_rays = long(width) * long(height);
-    f.primary_seconds = timed([&] { f.primary_hits = count_hits<T, SM, Planes, Tris>(ctx, width, height); });
+    f.primary_seconds = timed([&] { f.primary_hits = count_hits<T, SM>(ctx, width, height); });
     f.ask_seconds = timed([&] { every_tile([&](tile& x) { ask_every_light(x.batch, d.world.lights, x.hit, x.has_hit); }); });
     for (const tile& x : tiles) f.shadow_rays += long(x.batch.size());
-    f.shadow_seconds = timed([&] { every_tile([&](tile& x) { x.batch.template answer<SM, Planes, Tris>(ctx.soa); }); });
+    f.shadow_seconds = timed([&] { every_tile([&](tile& x) { x.batch.template answer<SM>(ctx.soa); }); });
     f.occluded = blocked();
     f.one_at_a_time_seconds = timed(
-        [&] { every_tile([&](tile& x) { x.batch.template answer_one_at_a_time<SM, Planes, Tris>(ctx.soa); }); });
+        [&] { every_tile([&](tile& x) { x.batch.template answer_one_at_a_time<SM>(ctx.soa); }); });
     f.occluded_one_at_a_time = blocked();
     std::atomic<long> alone{0};
     every_tile([&](tile& x) {
-        x.batch.template answer<SM, Planes, Tris>(ctx.soa);
+        x.batch.template answer<SM>(ctx.soa);
         int lane = 0;
         const ch06::occlusion_test<T> occluded = [&](const ray<T>& r, const interval<T>& range) {
-            return x.batch.template replay<SM, Planes, Tris>(ctx.soa, lane, r, range);
+            return x.batch.template replay<SM>(ctx.soa, lane, r, range);
         };
         for (lane = 0; lane < W; ++lane) {
             const auto& h = x.hit[lane];
@@ -468,75 +513,49 @@ shadow_figures shadows_with(const scene_description& d, int width, int height, b
     return f;
 }
 
-// Calls f(SM, Planes, Tris, Lights) with each choice as a compile-time
-// constant (std::integral_constant), so f can instantiate exactly one kernel.
+// Calls f(SM) with the plan's sphere formulation as a compile-time constant
+// (std::integral_constant), so f instantiates the one kernel it needs.
 template <class F>
-decltype(auto) dispatch(sphere_mode sm, bool planes, bool tris, bool lights, F&& f) {
-    auto pick = [](bool v, auto&& g) { return v ? g(std::true_type{}) : g(std::false_type{}); };
-    auto go = [&](auto SM) {
-        return pick(planes, [&](auto P) {
-            return pick(tris, [&](auto Tr) { return pick(lights, [&](auto L) { return f(SM, P, Tr, L); }); });
-        });
-    };
-    switch (sm) {
-        case sphere_mode::none: return go(std::integral_constant<sphere_mode, sphere_mode::none>{});
-        case sphere_mode::plain: return go(std::integral_constant<sphere_mode, sphere_mode::plain>{});
-        default: return go(std::integral_constant<sphere_mode, sphere_mode::robust>{});
-    }
+decltype(auto) with_sphere_mode(const scene_plan& plan, F&& f) {
+    if (plan.form == sphere_formulation::plain)
+        return f(std::integral_constant<sphere_mode, sphere_mode::plain>{});
+    return f(std::integral_constant<sphere_mode, sphere_mode::robust>{});
 }
 
-sphere_mode mode_of(const scene_plan& plan) {
-    if (plan.spheres == 0) return sphere_mode::none;
-    return plan.form == sphere_formulation::plain ? sphere_mode::plain : sphere_mode::robust;
+// Each entry point: the plan's precision, then its sphere formulation, as
+// template arguments; nothing else about the scene is (see the opening
+// comment).
+template <class F>
+decltype(auto) with_precision_and_mode(const scene_plan& plan, F&& f) {
+    auto in = [&](auto type) { return with_sphere_mode(plan, [&](auto SM) { return f(type, SM); }); };
+    return plan.prec == precision::single ? in(float{}) : in(double{});
 }
 
 }  // namespace
 
 image render_fast(const scene_description& d, const scene_plan& plan, int width, int height, render_stats& stats) {
-    auto run = [&](auto type) {
-        using T = decltype(type);
-        return dispatch(mode_of(plan), plan.planes > 0, plan.triangles > 0, plan.lights > 0,
-                        [&](auto SM, auto P, auto Tr, auto L) {
-                            return render_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value,
-                                               decltype(L)::value>(d, width, height, plan.tree, plan.spp, plan.seed,
-                                                                   stats);
-                        });
-    };
-    return plan.prec == precision::single ? run(float{}) : run(double{});
+    return with_precision_and_mode(plan, [&](auto type, auto SM) {
+        return render_with<decltype(type), decltype(SM)::value>(d, width, height, plan.tree, plan.spp, plan.seed, stats);
+    });
 }
 
 primary_hits trace_primary(const scene_description& d, const scene_plan& plan, int width, int height) {
-    auto run = [&](auto type) {
-        using T = decltype(type);
-        return dispatch(mode_of(plan), plan.planes > 0, plan.triangles > 0, false, [&](auto SM, auto P, auto Tr, auto) {
-            return trace_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value>(d, width, height, plan.tree);
-        });
-    };
-    return plan.prec == precision::single ? run(float{}) : run(double{});
+    return with_precision_and_mode(
+        plan, [&](auto type, auto SM) { return trace_with<decltype(type), decltype(SM)::value>(d, width, height, plan.tree); });
 }
 
 long count_primary_hits(const scene_description& d, const scene_plan& plan, int width, int height, int repeat,
                         render_stats* stats) {
-    auto run = [&](auto type) {
-        using T = decltype(type);
-        return dispatch(mode_of(plan), plan.planes > 0, plan.triangles > 0, false, [&](auto SM, auto P, auto Tr, auto) {
-            return count_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value>(d, width, height, plan.tree,
-                                                                                                repeat, stats);
-        });
-    };
-    return plan.prec == precision::single ? run(float{}) : run(double{});
+    return with_precision_and_mode(plan, [&](auto type, auto SM) {
+        return count_with<decltype(type), decltype(SM)::value>(d, width, height, plan.tree, repeat, stats);
+    });
 }
 
 shadow_figures time_shadow_rays(const scene_description& d, const scene_plan& plan, int width, int height,
                                 const pass_timer& timed) {
-    auto run = [&](auto type) {
-        using T = decltype(type);
-        return dispatch(mode_of(plan), plan.planes > 0, plan.triangles > 0, false, [&](auto SM, auto P, auto Tr, auto) {
-            return shadows_with<T, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value>(d, width, height,
-                                                                                                 plan.tree, timed);
-        });
-    };
-    return plan.prec == precision::single ? run(float{}) : run(double{});
+    return with_precision_and_mode(plan, [&](auto type, auto SM) {
+        return shadows_with<decltype(type), decltype(SM)::value>(d, width, height, plan.tree, timed);
+    });
 }
 
 tree_figures build_trees_only(const scene_description& d) {
@@ -550,12 +569,7 @@ tree_figures build_trees_only(const scene_description& d) {
 }
 
 primary_hits trace_primary_reference(const scene_description& d, int width, int height) {
-    const bool spheres = !d.world.spheres.empty();
-    return dispatch(spheres ? sphere_mode::robust : sphere_mode::none, !d.world.planes.empty(),
-                    !d.world.triangles.empty(), false, [&](auto SM, auto P, auto Tr, auto) {
-                        return trace_with<long double, decltype(SM)::value, decltype(P)::value, decltype(Tr)::value>(
-                            d, width, height, false);
-                    });
+    return trace_with<long double, sphere_mode::robust>(d, width, height, false);
 }
 
 }  // namespace rt::render_tool::RT_FAST_ISA

@@ -20,7 +20,9 @@ constexpr int W = packet_width;
 constexpr int tile_w = 8, tile_h = W / tile_w;  // the pixels of one packet
 static_assert(tile_w * tile_h == W, "a packet is a whole tile");
 
-enum class sphere_mode { none, plain, robust };
+// The sphere formulation a kernel is compiled for (chapter 07's plain or
+// robust quadratic): the one choice about the objects made at compile time.
+enum class sphere_mode { plain, robust };
 
 // A tree's leaf holds at most 8 objects (build_bvh's max_leaf); one ray
 // tests them as one group of 8 lanes (a vector of 8 floats), like a shadow

@@ -1,6 +1,7 @@
 // fast_path_queries.hpp — part of fast_path.cpp (see fast_path_arrays.hpp):
 // the two questions the pixel loops ask of the scene, each one call per
-// kind of object the scene has (the others are compiled out).
+// kind of object the scene has (a kind it has none of is skipped by one
+// branch per packet or shadow ray).
 #pragma once
 #ifndef RT_FAST_PATH_PARTS
 #error "a part of fast_path.cpp: included by it, after its headers and its target pragma"
@@ -11,14 +12,14 @@
 // neither underflow nor overflow. Blocking: only whether each ray hits
 // anything matters (shadow rays), so a ray that has hit something is done:
 // its t becomes -infinity, which enters no box and is beaten by no hit.
-template <class T, sphere_mode SM, bool Planes, bool Tris, bool CommonOrigin, bool Blocking = false>
+template <class T, sphere_mode SM, bool CommonOrigin, bool Blocking = false>
 void closest_hits_comfortable(const soa_scene<T>& s, const packet<T>& p, packet_best<T>& best, T tmin, T* tbest,
                               index_t<T>* object) {
     auto finish_blocked = [&] {
         if constexpr (Blocking)
             for (int k = 0; k < W; ++k) best.t[k] = best.object[k] >= 0 ? -infinity<T> : best.t[k];
     };
-    if constexpr (SM != sphere_mode::none) {
+    if (s.sphere_count > 0) {
         if (s.tree)
             traverse_packet(
                 s.sphere_tree, p, best.t,
@@ -34,8 +35,8 @@ void closest_hits_comfortable(const soa_scene<T>& s, const packet<T>& p, packet_
             spheres_closest<T, SM, CommonOrigin, false>(s, 0, s.sphere_count, p, tmin, best);
         finish_blocked();
     }
-    if constexpr (Planes) planes_closest<T, CommonOrigin>(s, p, tmin, best);
-    if constexpr (Tris) triangles_closest<T, CommonOrigin>(s, p, tmin, best);
+    if (s.plane_count > 0) planes_closest<T, CommonOrigin>(s, p, tmin, best);
+    if (s.triangle_count > 0) triangles_closest<T, CommonOrigin>(s, p, tmin, best);
     for (int k = 0; k < W; ++k) {
         tbest[k] = best.t[k];
         object[k] = best.object[k];
@@ -51,7 +52,7 @@ void closest_hits_comfortable(const soa_scene<T>& s, const packet<T>& p, packet_
 // direction. The camera makes no such ray (a primary direction is at least
 // as long as the distance 1 to the image plane); a packet built otherwise
 // may hold one.
-template <class T, sphere_mode SM, bool Planes, bool Tris, bool CommonOrigin, bool Blocking = false>
+template <class T, sphere_mode SM, bool CommonOrigin, bool Blocking = false>
 void closest_hits_scaled(const soa_scene<T>& s, const packet<T>& p, T tmin, const T* tmax, T* tbest,
                          index_t<T>* object) {
     for (int k = 0; k < W; ++k) {
@@ -67,7 +68,7 @@ void closest_hits_scaled(const soa_scene<T>& s, const packet<T>& p, T tmin, cons
             for (int j = 0; j < W; ++j) best.t[j] = std::ldexp(tmax[k], -e);
         alignas(64) T t[W];
         alignas(64) index_t<T> id[W];
-        closest_hits_comfortable<T, SM, Planes, Tris, true, Blocking>(s, alone, best, std::ldexp(tmin, -e), t, id);
+        closest_hits_comfortable<T, SM, true, Blocking>(s, alone, best, std::ldexp(tmin, -e), t, id);
         tbest[k] = std::ldexp(t[0], e);  // infinity (a miss) stays infinity
         object[k] = id[0];
     }
@@ -81,7 +82,7 @@ void closest_hits_scaled(const soa_scene<T>& s, const packet<T>& p, T tmin, cons
 // every loop keeps a t only below the best so far and asks the same
 // kernels any_hit asks. Blocking (shadow rays): only that is answered, and
 // tbest is not a hit's t.
-template <class T, sphere_mode SM, bool Planes, bool Tris, bool CommonOrigin, bool Blocking = false>
+template <class T, sphere_mode SM, bool CommonOrigin, bool Blocking = false>
 void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, index_t<T>* object,
                   const T* tmax = nullptr) {
     packet_best<T> best(p);
@@ -89,14 +90,14 @@ void closest_hits(const soa_scene<T>& s, const packet<T>& p, T tmin, T* tbest, i
     int uncomfortable = 0;  // d_max is infinite for a direction to scale (or an infinite one: e = 0, a miss)
     for (int k = 0; k < W; ++k) uncomfortable |= int(best.d_max[k] == infinity<T>);
     if (uncomfortable)
-        closest_hits_scaled<T, SM, Planes, Tris, CommonOrigin, Blocking>(s, p, tmin, tmax, tbest, object);
+        closest_hits_scaled<T, SM, CommonOrigin, Blocking>(s, p, tmin, tmax, tbest, object);
     else
-        closest_hits_comfortable<T, SM, Planes, Tris, CommonOrigin, Blocking>(s, p, best, tmin, tbest, object);
+        closest_hits_comfortable<T, SM, CommonOrigin, Blocking>(s, p, best, tmin, tbest, object);
 }
 
 // Is anything hit with tmin < t < tmax? One ray (a shadow ray); each kind
 // of object stops at its first blocker.
-template <class T, sphere_mode SM, bool Planes, bool Tris>
+template <class T, sphere_mode SM>
 bool any_hit(const soa_scene<T>& s, const ray<T>& light_ray, T tmin, T tmax) {
     const shadow_ray<T> r(light_ray);
     if (r.d_max == infinity<T>) {
@@ -108,15 +109,12 @@ bool any_hit(const soa_scene<T>& s, const ray<T>& light_ray, T tmin, T tmax) {
         if (e != 0) {
             const vec3<T>& d = light_ray.direction;
             const vec3<T> scaled(std::ldexp(d.x, e), std::ldexp(d.y, e), std::ldexp(d.z, e));
-            return any_hit<T, SM, Planes, Tris>(s, ray<T>{light_ray.origin, scaled}, std::ldexp(tmin, -e),
+            return any_hit<T, SM>(s, ray<T>{light_ray.origin, scaled}, std::ldexp(tmin, -e),
                                                 std::ldexp(tmax, -e));
         }
     }
-    if constexpr (SM != sphere_mode::none)
-        if (spheres_block<T, SM>(s, r, tmin, tmax)) return true;
-    if constexpr (Planes)
-        if (planes_block(s, r, tmin, tmax)) return true;
-    if constexpr (Tris)
-        if (triangles_block(s, r, tmin, tmax)) return true;
+    if (s.sphere_count > 0 && spheres_block<T, SM>(s, r, tmin, tmax)) return true;
+    if (s.plane_count > 0 && planes_block(s, r, tmin, tmax)) return true;
+    if (s.triangle_count > 0 && triangles_block(s, r, tmin, tmax)) return true;
     return false;
 }

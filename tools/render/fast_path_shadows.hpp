@@ -41,7 +41,7 @@ public:
     // their tmin (all of chapter 06's are 0); a query with an empty range
     // (a light on the ray's origin) is not blocked and takes no lane. The
     // lanes past a packet's last ray repeat its first.
-    template <sphere_mode SM, bool Planes, bool Tris>
+    template <sphere_mode SM>
     void answer(const soa_scene<T>& s) {
         packet<T> p;
         alignas(64) T tmax[W], t[W];
@@ -61,16 +61,16 @@ public:
                 p.dx[k] = q.r.direction.x, p.dy[k] = q.r.direction.y, p.dz[k] = q.r.direction.z;
                 tmax[k] = q.range.max;
             }
-            closest_hits<T, SM, Planes, Tris, false, true>(s, p, tmin, t, object, tmax);
+            closest_hits<T, SM, false, true>(s, p, tmin, t, object, tmax);
             for (int k = 0; k < n; ++k) queries_[lane_query[k]].blocked = object[k] >= 0;
         }
     }
 
     // The same answers from any_hit, one ray at a time (what the packets
     // are measured and tested against).
-    template <sphere_mode SM, bool Planes, bool Tris>
+    template <sphere_mode SM>
     void answer_one_at_a_time(const soa_scene<T>& s) {
-        for (query& q : queries_) q.blocked = any_hit<T, SM, Planes, Tris>(s, q.r, q.range.min, q.range.max);
+        for (query& q : queries_) q.blocked = any_hit<T, SM>(s, q.r, q.range.min, q.range.max);
     }
 
     long blocked() const {
@@ -82,14 +82,14 @@ public:
     // Whether lane k's shadow ray (r, range) is blocked: the packet's answer
     // when it is the next ray lane k asked; else (never, while shade() asks
     // as its header says) any_hit's, and `alone` counts it.
-    template <sphere_mode SM, bool Planes, bool Tris>
+    template <sphere_mode SM>
     bool replay(const soa_scene<T>& s, int k, const ray<T>& r, const interval<T>& range) {
         const std::vector<size_t>& asked = asked_[size_t(k)];
         size_t& next = next_[size_t(k)];
         if (next < asked.size() && same(queries_[asked[next]], r, range)) return queries_[asked[next++]].blocked;
         next = asked.size();  // out of step: this lane's later answers are not trusted either
         ++alone;
-        return any_hit<T, SM, Planes, Tris>(s, r, range.min, range.max);
+        return any_hit<T, SM>(s, r, range.min, range.max);
     }
 
     long alone = 0;  // queries replay traced one at a time
