@@ -407,11 +407,11 @@ primary_hits trace_with(const scene_description& d, int width, int height, bool 
     hits.t.assign(size_t(width) * size_t(height), 0);
     for_each_row((height + tile_h - 1) / tile_h, [&](int tile_row) {
         trace_tile_row<T, SM>(ctx, width, height, tile_row,
-                                            [&](const packet<T>&, const T* t, const index_t<T>* object, int k, int col, int row) {
-                                                const size_t i = size_t(row) * size_t(width) + size_t(col);
-                                                hits.object[i] = object[k] < 0 ? -1 : int(object[k]);
-                                                hits.t[i] = (long double)t[k];
-                                            });
+                              [&](const packet<T>&, const T* t, const index_t<T>* object, int k, int col, int row) {
+                                  const size_t i = size_t(row) * size_t(width) + size_t(col);
+                                  hits.object[i] = object[k] < 0 ? -1 : int(object[k]);
+                                  hits.t[i] = (long double)t[k];
+                              });
     });
     return hits;
 }
@@ -513,21 +513,16 @@ shadow_figures shadows_with(const scene_description& d, int width, int height, b
     return f;
 }
 
-// Calls f(SM) with the plan's sphere formulation as a compile-time constant
-// (std::integral_constant), so f instantiates the one kernel it needs.
-template <class F>
-decltype(auto) with_sphere_mode(const scene_plan& plan, F&& f) {
-    if (plan.form == sphere_formulation::plain)
-        return f(std::integral_constant<sphere_mode, sphere_mode::plain>{});
-    return f(std::integral_constant<sphere_mode, sphere_mode::robust>{});
-}
-
-// Each entry point: the plan's precision, then its sphere formulation, as
-// template arguments; nothing else about the scene is (see the opening
-// comment).
+// Calls f(type, SM) with the plan's precision (a value of the scalar type)
+// and its sphere formulation (std::integral_constant) as compile-time
+// choices: nothing else about the scene is one (see the opening comment).
 template <class F>
 decltype(auto) with_precision_and_mode(const scene_plan& plan, F&& f) {
-    auto in = [&](auto type) { return with_sphere_mode(plan, [&](auto SM) { return f(type, SM); }); };
+    auto in = [&](auto type) {
+        if (plan.form == sphere_formulation::plain)
+            return f(type, std::integral_constant<sphere_mode, sphere_mode::plain>{});
+        return f(type, std::integral_constant<sphere_mode, sphere_mode::robust>{});
+    };
     return plan.prec == precision::single ? in(float{}) : in(double{});
 }
 
