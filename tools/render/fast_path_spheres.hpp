@@ -83,13 +83,21 @@ inline T sphere_t(T fx, T fy, T fz, T c, T rr, T dx, T dy, T dz, T a, T inv_a, T
     return ((disc >= T(0)) & (t > tmin)) ? t : infinity<T>;
 }
 
+// The number a hit on stored sphere i is kept under: with Ties (a tree's
+// leaf) the scene's own number, from another array, so asked for only once
+// some ray comes near the sphere; without, its place in brute force's order.
+template <bool Ties, class T>
+[[gnu::always_inline]] inline index_t<T> sphere_id(const soa_scene<T>& s, size_t i) {
+    return Ties ? index_t<T>(s.sphere_number(i)) : index_t<T>(i);
+}
+
 // Sphere i against a packet whose rays share the origin of lane 0: f and c
 // leave the lane loop. Cull first: the full test (square root, division,
 // the update of the closest hit) only when some ray of the packet passes
 // within the sphere's radius.
 template <class T, sphere_mode SM, bool Ties>
-[[gnu::always_inline]] inline void sphere_closest_common_origin(const soa_scene<T>& s, size_t i, index_t<T> id,
-                                                                const packet<T>& p, T tmin, packet_best<T>& best) {
+[[gnu::always_inline]] inline void sphere_closest_common_origin(const soa_scene<T>& s, size_t i, const packet<T>& p,
+                                                                T tmin, packet_best<T>& best) {
     const T fx = p.ox[0] - s.cx[i], fy = p.oy[0] - s.cy[i], fz = p.oz[0] - s.cz[i], rr = s.radius_squared(i);
     const T c = sphere_c<T, SM>(fx, fy, fz, s.radius[i], rr);
     int near_any = 0;
@@ -97,6 +105,7 @@ template <class T, sphere_mode SM, bool Ties>
         near_any |= int(sphere_discriminant<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], best.a[k],
                                                    best.inv_a[k]) >= T(0));
     if (!near_any) return;
+    const index_t<T> id = sphere_id<Ties>(s, i);
     for (int k = 0; k < W; ++k)
         best.template keep<Ties>(
             k, sphere_t<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], best.a[k], best.inv_a[k], tmin), id);
@@ -104,8 +113,8 @@ template <class T, sphere_mode SM, bool Ties>
 
 // The same for rays with origins of their own (an orthographic camera).
 template <class T, sphere_mode SM, bool Ties>
-[[gnu::always_inline]] inline void sphere_closest_own_origins(const soa_scene<T>& s, size_t i, index_t<T> id,
-                                                              const packet<T>& p, T tmin, packet_best<T>& best) {
+[[gnu::always_inline]] inline void sphere_closest_own_origins(const soa_scene<T>& s, size_t i, const packet<T>& p,
+                                                              T tmin, packet_best<T>& best) {
     const T cx = s.cx[i], cy = s.cy[i], cz = s.cz[i], r = s.radius[i], rr = r * r;
     int near_any = 0;
     for (int k = 0; k < W; ++k) {
@@ -115,6 +124,7 @@ template <class T, sphere_mode SM, bool Ties>
                                                    best.inv_a[k]) >= T(0));
     }
     if (!near_any) return;
+    const index_t<T> id = sphere_id<Ties>(s, i);
     for (int k = 0; k < W; ++k) {
         const T fx = p.ox[k] - cx, fy = p.oy[k] - cy, fz = p.oz[k] - cz;
         const T c = sphere_c<T, SM>(fx, fy, fz, r, rr);
@@ -129,27 +139,35 @@ template <class T, sphere_mode SM, bool CommonOrigin, bool Ties>
 [[gnu::always_inline]] inline void spheres_closest(const soa_scene<T>& s, size_t begin, size_t end, const packet<T>& p,
                                                    T tmin, packet_best<T>& best) {
     for (size_t i = begin; i < end; ++i) {
-        const index_t<T> id = Ties ? index_t<T>(s.sphere_number(i)) : index_t<T>(i);
         if constexpr (CommonOrigin)
-            sphere_closest_common_origin<T, SM, Ties>(s, i, id, p, tmin, best);
+            sphere_closest_common_origin<T, SM, Ties>(s, i, p, tmin, best);
         else
-            sphere_closest_own_origins<T, SM, Ties>(s, i, id, p, tmin, best);
+            sphere_closest_own_origins<T, SM, Ties>(s, i, p, tmin, best);
     }
 }
 
 // Spheres [begin, end) of a tree's leaf against ray k of the packet alone
 // (traverse_packet hands a box that few of its rays enter to them one by
 // one): the lane loops' arithmetic for that lane, so the same t and object.
-// (With a common origin every lane's origin is lane 0's.)
+// (With a common origin every lane's origin is lane 0's.) One ray passes
+// most spheres of the leaves it meets by: their discriminant, the same
+// formula as sphere_t's, is negative, and sphere_t would answer infinity,
+// which keep() ignores; so the square root and the division are left out
+// for them. The sphere's scene number is another array, looked up only
+// for a hit at or before the ray's best (keep's tie rule needs it then).
 template <class T, sphere_mode SM>
 [[gnu::always_inline]] inline void spheres_closest_one(const soa_scene<T>& s, size_t begin, size_t end,
                                                        const packet<T>& p, int k, T tmin, packet_best<T>& best) {
     for (size_t i = begin; i < end; ++i) {
         const T fx = p.ox[k] - s.cx[i], fy = p.oy[k] - s.cy[i], fz = p.oz[k] - s.cz[i], rr = s.radius_squared(i);
-        const T c = sphere_c<T, SM>(fx, fy, fz, s.radius[i], rr);
-        best.template keep<true>(
-            k, sphere_t<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], best.a[k], best.inv_a[k], tmin),
-            index_t<T>(s.sphere_number(i)));
+        // The plain discriminant needs c; the robust one does not, and its
+        // compensated c waits for a sphere the ray comes near.
+        T c = SM == sphere_mode::plain ? sphere_c<T, SM>(fx, fy, fz, s.radius[i], rr) : T(0);
+        if (!(sphere_discriminant<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], best.a[k], best.inv_a[k]) >= T(0)))
+            continue;
+        if constexpr (SM == sphere_mode::robust) c = sphere_c<T, SM>(fx, fy, fz, s.radius[i], rr);
+        const T t = sphere_t<T, SM>(fx, fy, fz, c, rr, p.dx[k], p.dy[k], p.dz[k], best.a[k], best.inv_a[k], tmin);
+        if (t <= best.t[k]) best.template keep<true>(k, t, index_t<T>(s.sphere_number(i)));
     }
 }
 

@@ -122,6 +122,13 @@ struct wide_ray {
         }
     }
 
+    // Ray k of a packet, from the float origin and reciprocals its slabs
+    // already hold (the same numbers: packet_slabs computes them alike).
+    [[gnu::always_inline]] wide_ray(const packet_slabs& slabs, int k)
+        : o{slabs.ox[k], slabs.oy[k], slabs.oz[k]}, inv{slabs.ix[k], slabs.iy[k], slabs.iz[k]} {
+        for (int a = 0; a < 3; ++a) negative[a] = std::signbit(inv[a]);
+    }
+
     // The children of n the ray enters before limit, into hit[], sorted
     // farthest first; returns how many. The ray's slab intervals with the
     // four child boxes are computed together. The near side of a slab is
@@ -161,10 +168,9 @@ struct wide_ray {
 // returns true at a blocker. `start` is where the walk begins: the root,
 // or a child of a node that a packet's walk hands to this ray alone.
 template <bool AnyHit, class T, class Leaf>
-[[gnu::always_inline]] inline bool traverse_wide(const bvh_wide_tree& tree, const T (&origin)[3], const T (&direction)[3], const T& best,
-                   Leaf&& leaf, wide_entry start = wide_entry{0.0f, 0, 0}) {
+[[gnu::always_inline]] inline bool traverse_wide(const bvh_wide_tree& tree, const wide_ray& r, const T& best, Leaf&& leaf,
+                                                 wide_entry start = wide_entry{0.0f, 0, 0}) {
     if (tree.nodes.empty()) return false;
-    const wide_ray r(origin, direction);
     // best in float, rounded up a little: never below the true value.
     float limit = float(best) * slab_widen;
     wide_entry stack[512];  // at most wide - 1 per level and the tree is at most ~130 levels deep
@@ -193,6 +199,13 @@ template <bool AnyHit, class T, class Leaf>
             current = stack[--top];
         } while (current.enter > limit);
     }
+}
+
+// The same for a ray given by its origin and direction.
+template <bool AnyHit, class T, class Leaf>
+[[gnu::always_inline]] inline bool traverse_wide(const bvh_wide_tree& tree, const T (&origin)[3], const T (&direction)[3],
+                                                 const T& best, Leaf&& leaf) {
+    return traverse_wide<AnyHit>(tree, wide_ray(origin, direction), best, leaf);
 }
 
 // A child of a wide node on traverse_packet's stack, with the rays of the
@@ -260,9 +273,8 @@ template <class T, class Leaf, class LeafOne>
         if (__builtin_popcount(e.rays) <= packet_hand_off) {
             for (std::uint32_t rays = e.rays; rays != 0; rays &= rays - 1) {
                 const int k = __builtin_ctz(rays);
-                const T origin[3] = {p.ox[k], p.oy[k], p.oz[k]}, direction[3] = {p.dx[k], p.dy[k], p.dz[k]};
                 traverse_wide<false>(
-                    tree, origin, direction, best_t[k],
+                    tree, wide_ray(slabs, k), best_t[k],
                     [&](std::uint32_t b, std::uint32_t n) { leaf_one(k, size_t(b), size_t(b) + n); },
                     wide_entry{0.0f, e.child, e.count});
             }
