@@ -60,9 +60,12 @@ struct packet_slabs {
 // A box that at most this many rays of a packet enter is walked by those
 // rays one at a time (traverse_packet): deep in a big tree, where the
 // boxes are small, the packet's 32 lanes would mostly work for rays that
-// are not there. (Measured on the binary tree this walk once used: 0 gave
-// 427 ns per ray on a million random spheres, 2 gave 402 and 6 gave 511.)
-constexpr int packet_hand_off = 2;
+// are not there. (rt-bench --trees-only, three runs each in turn, avx2
+// copy, 4 December 2026: on a million random spheres 2 gave 273-284 ns per
+// ray, 4 gave 259-277 and 6 gave 261-277; on the tetra 59-62, 56-64 and
+// 54-57. The one-ray walk's leaves had just become cheaper, which moved
+// the best threshold up from 2.)
+constexpr int packet_hand_off = 4;
 
 // Which rays k of the packet enter box b before best_t[k] (a bit each).
 template <class T>
