@@ -109,8 +109,7 @@ bool any_hit(const soa_scene<T>& s, const ray<T>& light_ray, T tmin, T tmax) {
         if (e != 0) {
             const vec3<T>& d = light_ray.direction;
             const vec3<T> scaled(std::ldexp(d.x, e), std::ldexp(d.y, e), std::ldexp(d.z, e));
-            return any_hit<T, SM>(s, ray<T>{light_ray.origin, scaled}, std::ldexp(tmin, -e),
-                                                std::ldexp(tmax, -e));
+            return any_hit<T, SM>(s, ray<T>{light_ray.origin, scaled}, std::ldexp(tmin, -e), std::ldexp(tmax, -e));
         }
     }
     if (s.sphere_count > 0 && spheres_block<T, SM>(s, r, tmin, tmax)) return true;
