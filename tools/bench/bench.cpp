@@ -445,12 +445,13 @@ pinhole_camera<float> float_camera(const scene_description& d, int size) {
 #endif
 
 // Our tree against Embree's on one scene: build, then primary hits only.
-// Our traced time is trace_repeats traces after one build, without that
-// build (best_seconds_after_setup), divided by trace_repeats; all CPU time per
-// thread, best of `runs`. (A whole run minus a build timed in another run
-// would not do: on the sphereflake that difference is mostly the two builds'
-// spread.)
-constexpr int trace_repeats = 16;
+// Both traces are timed alike: the fastest of `runs` samples of about 50 ms
+// each (best_seconds_per_pass: a short trace repeated within a sample),
+// ours after one build of the scene's arrays and tree, untimed; all CPU
+// time per thread. (A mean over several traces beside Embree's fastest
+// one would favour Embree.)
+double trace_seconds_of(const std::function<void()>& trace) { return best_seconds_per_pass(trace, runs); }
+
 void tree_row(const char* name, const scene_description& d, int size) {
     scene_plan plan = make_plan(d, 1e-3, std::nullopt);
     plan.tree = true;
@@ -458,11 +459,8 @@ void tree_row(const char* name, const scene_description& d, int size) {
     const double rays = double(size) * double(size);
     tree_figures tf;
     const double build = best_seconds([&] { tf = build_trees_only(d); }, runs);
-    long ours_hits = 0;
-    const double trace =
-        best_seconds_after_setup(
-            [&](render_stats& st) { ours_hits = count_primary_hits(d, plan, size, size, trace_repeats, &st); }, runs) /
-        trace_repeats;
+    double trace = 0;
+    const long ours_hits = count_primary_hits(d, plan, size, size, trace_seconds_of, &trace);
     std::printf("   %-22s | %10.0f | %9.1f | %8.1f | %9.1f | %7.0f", name, objects, build * 1e3,
                 build * 1e3 / (objects / 1e6), rays / trace / 1e6, trace / rays * 1e9 * render_threads());
 #ifdef RT_HAVE_EMBREE
@@ -471,8 +469,8 @@ void tree_row(const char* name, const scene_description& d, int size) {
         const double ebuild = best_seconds([&] { e.reset(), e = std::make_unique<embree_scene>(d); }, 1);
         const pinhole_camera<float> cam = float_camera(d, size);
         long hits1 = 0, hits16 = 0;
-        const double single = best_seconds([&] { hits1 = e->single(cam); }, runs);
-        const double packets = best_seconds([&] { hits16 = e->packets16(cam); }, runs);
+        const double single = trace_seconds_of([&] { hits1 = e->single(cam); });
+        const double packets = trace_seconds_of([&] { hits16 = e->packets16(cam); });
         std::printf(" | %9.1f | %8.1f | %8.1f | %7.0f | %6.2fx | %6.2fx | %ld/%ld/%ld", ebuild * 1e3, rays / single / 1e6,
                     rays / packets / 1e6, single / rays * 1e9 * render_threads(), single / trace, packets / trace,
                     ours_hits, hits1, hits16);
@@ -660,7 +658,7 @@ flake_figures instanced_flake_row(int level, int fsize,
     const double start_to_png = wall.seconds(), start_to_png_cpu = process_cpu_seconds() - cpu0;
     f.rays = st.rays;
     f.render_seconds = best_seconds([&] { render_instanced(d, built, fsize, fsize, st); }, 1);
-    f.primary_seconds = best_seconds([&] { count_primary_hits_instanced(d, built, fsize, fsize); }, 1);
+    f.primary_seconds = trace_seconds_of([&] { count_primary_hits_instanced(d, built, fsize, fsize); });
     const double px = double(fsize) * fsize;
     std::printf("   level %2d by instancing (placed objects of up to %llu shapes stored expanded): %llu spheres from %zu objects; start to PNG %.2f s wall (%.2f s CPU); tree "
                 "%.3f MB, built in %.1f ms; render with shadows %.2f s, %ld rays, %.0f ns/ray; primary rays only %.0f "
@@ -680,9 +678,9 @@ flake_figures instanced_flake_row(int level, int fsize,
         no_ground.world.planes.clear();
         const instanced_scene ours(no_ground, expand_at_most);
         long ours_hits = 0, hits1 = 0;
-        const double ours_primary = best_seconds([&] { ours_hits = count_primary_hits_instanced(no_ground, ours, fsize, fsize); }, 1);
+        const double ours_primary = trace_seconds_of([&] { ours_hits = count_primary_hits_instanced(no_ground, ours, fsize, fsize); });
         const embree_instanced_scene e(d, level / 2);
-        const double single = best_seconds([&] { hits1 = e.single(float_camera(d, fsize)); }, runs);
+        const double single = trace_seconds_of([&] { hits1 = e.single(float_camera(d, fsize)); });
         std::printf("   level %2d in Embree (two levels: %zu top spheres, %zu instances of one flake of %zu spheres; no "
                     "ground plane): build %.2f s, primary rays %.0f ns/ray (rtcIntersect1); ours on the same spheres "
                     "%.0f ns/ray (ours/E1 %.2fx); hits ours/E1 %ld/%ld\n",
@@ -737,14 +735,8 @@ void big_scenes(int size, bool flake, bool mesh_too, bool flakes_too = true) {
                 build, double(tf.bytes) / 1e6, tf.depth, render_trace, flat.rays, double(flat.rays) / render_trace / 1e6,
                 flat.ns_per_ray(), peak_rss_gb());
     std::fflush(stdout);
-    constexpr int flake_trace_repeats = 4;
-    long ours_hits = 0;
     const double px = double(fsize) * fsize;
-    flat.primary_seconds =
-        best_seconds_after_setup(
-            [&](render_stats& st) { ours_hits = count_primary_hits(d, plan, fsize, fsize, flake_trace_repeats, &st); },
-            1) /
-        flake_trace_repeats;
+    const long ours_hits = count_primary_hits(d, plan, fsize, fsize, trace_seconds_of, &flat.primary_seconds);
     const compare_result same = compare_images(by_instances.picture, flat.picture, compare_tolerance{});
     std::printf("   level 8, flat against by instancing, same run: render with shadows %.0f against %.0f ns/ray "
                 "(instanced/flat %.2fx the time), primary rays %.0f against %.0f ns/ray (%.2fx); pictures: %s\n",
@@ -758,10 +750,11 @@ void big_scenes(int size, bool flake, bool mesh_too, bool flakes_too = true) {
         const double ebuild = best_seconds([&] { e = std::make_unique<embree_scene>(d); }, 1);
         const pinhole_camera<float> cam = float_camera(d, fsize);
         long hits1 = 0, hits16 = 0;
-        // Best of `runs`: a trace of these rays takes a tenth of a second, and
-        // one run of it read anywhere from 5.7 to 9.7 Mrays/s.
-        const double single = best_seconds([&] { hits1 = e->single(cam); }, runs);
-        const double packets = best_seconds([&] { hits16 = e->packets16(cam); }, runs);
+        // Timed as ours just above (trace_seconds_of): a trace of these rays
+        // takes a tenth of a second, and one run of it read anywhere from
+        // 5.7 to 9.7 Mrays/s, so each is the fastest of `runs`.
+        const double single = trace_seconds_of([&] { hits1 = e->single(cam); });
+        const double packets = trace_seconds_of([&] { hits16 = e->packets16(cam); });
         std::printf("   Embree, flat (spheres only: no infinite plane in Embree): build %.2f s, primary rays %.2f Mrays/s "
                     "(rtcIntersect1), %.2f Mrays/s (rtcIntersect16); ours on the same primary rays %.2f Mrays/s "
                     "(%s); hits ours/E1/E16 %ld/%ld/%ld; peak memory %.2f GB\n",

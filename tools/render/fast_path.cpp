@@ -431,16 +431,17 @@ long count_hits(const context<T>& ctx, int width, int height) {
 }
 
 template <class T, sphere_mode SM>
-long count_with(const scene_description& d, int width, int height, bool tree, int repeat, render_stats* stats) {
-    const stopwatch setup;
-    const double setup_cpu = process_cpu_seconds();
+long count_with(const scene_description& d, int width, int height, bool tree, const pass_timer& timed,
+                double* trace_seconds) {
     const context<T> ctx(d, width, height, tree);
-    if (stats) {
-        stats->setup_seconds = setup.seconds();
-        stats->setup_cpu_seconds = process_cpu_seconds() - setup_cpu;
-    }
     long hits = 0;
-    for (int r = 0; r < repeat; ++r) hits = count_hits<T, SM>(ctx, width, height);
+    const auto trace = [&] { hits = count_hits<T, SM>(ctx, width, height); };
+    if (!timed) {
+        trace();
+        return hits;
+    }
+    const double seconds = timed(trace);
+    if (trace_seconds) *trace_seconds = seconds;
     return hits;
 }
 
@@ -539,10 +540,10 @@ primary_hits trace_primary(const scene_description& d, const scene_plan& plan, i
         plan, [&](auto type, auto SM) { return trace_with<decltype(type), decltype(SM)::value>(d, width, height, plan.tree); });
 }
 
-long count_primary_hits(const scene_description& d, const scene_plan& plan, int width, int height, int repeat,
-                        render_stats* stats) {
+long count_primary_hits(const scene_description& d, const scene_plan& plan, int width, int height,
+                        const pass_timer& timed, double* trace_seconds) {
     return with_precision_and_mode(plan, [&](auto type, auto SM) {
-        return count_with<decltype(type), decltype(SM)::value>(d, width, height, plan.tree, repeat, stats);
+        return count_with<decltype(type), decltype(SM)::value>(d, width, height, plan.tree, timed, trace_seconds);
     });
 }
 

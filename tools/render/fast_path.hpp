@@ -39,14 +39,18 @@ primary_hits trace_primary(const scene_description& scene, const scene_plan& pla
 // numbers: the reference the error report compares with.
 primary_hits trace_primary_reference(const scene_description& scene, int width, int height);
 
+// How a benchmark times a pass it is handed: it may run it several times
+// and returns the seconds of one pass (rt-bench keeps the fastest sample).
+using pass_timer = std::function<double(const std::function<void()>& pass)>;
+
 // Primary rays only, closest hit only, no shading: how many pixels hit
 // something. The benchmark's measure of raw intersection throughput (the
 // same work Embree's rtcIntersect does). The scene's arrays and trees are
-// built once and the image traced `repeat` times, so that a benchmark can
-// time many traces against one build; `stats`, when given, gets the build's
-// own times (setup_seconds, setup_cpu_seconds), to take out of the run's.
-long count_primary_hits(const scene_description& scene, const scene_plan& plan, int width, int height, int repeat = 1,
-                        render_stats* stats = nullptr);
+// built first, untimed; then the image is traced once, or under `timed`
+// when one is given, which puts the seconds of one trace in
+// *trace_seconds: a benchmark times traces, not the build.
+long count_primary_hits(const scene_description& scene, const scene_plan& plan, int width, int height,
+                        const pass_timer& timed = nullptr, double* trace_seconds = nullptr);
 
 // One lit render's shadow rays against its primary rays, apart from the
 // shading. Every primary hit is found once; then each pass runs on every
@@ -65,7 +69,6 @@ struct shadow_figures {
     long asked_but_not_ahead = 0;
     double primary_seconds = 0, ask_seconds = 0, shadow_seconds = 0, one_at_a_time_seconds = 0;
 };
-using pass_timer = std::function<double(const std::function<void()>& pass)>;
 shadow_figures time_shadow_rays(const scene_description& scene, const scene_plan& plan, int width, int height,
                                 const pass_timer& timed);
 // What building the scene's trees costs, apart from tracing: the boxes,

@@ -21,7 +21,7 @@ namespace rt::render_tool {
     image render_fast(const scene_description&, const scene_plan&, int, int, render_stats&);                           \
     primary_hits trace_primary(const scene_description&, const scene_plan&, int, int);                        \
     primary_hits trace_primary_reference(const scene_description&, int, int);                                 \
-    long count_primary_hits(const scene_description&, const scene_plan&, int, int, int, render_stats*);       \
+    long count_primary_hits(const scene_description&, const scene_plan&, int, int, const pass_timer&, double*); \
     tree_figures build_trees_only(const scene_description&);                                                  \
     shadow_figures time_shadow_rays(const scene_description&, const scene_plan&, int, int, const pass_timer&); \
     void closest_in_trees_packet(const instanced_scene_data&, const ray<double>*, double, local_hit*);         \
@@ -117,9 +117,9 @@ primary_hits trace_primary(const scene_description& d, const scene_plan& plan, i
 primary_hits trace_primary_reference(const scene_description& d, int width, int height) {
     return chosen().trace_primary_reference(d, width, height);
 }
-long count_primary_hits(const scene_description& d, const scene_plan& plan, int width, int height, int repeat,
-                        render_stats* stats) {
-    return chosen().count_primary_hits(d, plan, width, height, repeat, stats);
+long count_primary_hits(const scene_description& d, const scene_plan& plan, int width, int height,
+                        const pass_timer& timed, double* trace_seconds) {
+    return chosen().count_primary_hits(d, plan, width, height, timed, trace_seconds);
 }
 tree_figures build_trees_only(const scene_description& d) { return chosen().build_trees_only(d); }
 shadow_figures time_shadow_rays(const scene_description& d, const scene_plan& plan, int width, int height,
