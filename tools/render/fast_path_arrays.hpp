@@ -129,7 +129,7 @@ struct soa_scene {
     // sphere i and triangle j, and closest_hits answers with those numbers.
     bool tree = false;
     //
-    // Spheres and triangles each get a 4-wide tree (bvh_build.hpp), walked
+    // Spheres and triangles each get an 8-wide tree (bvh_build.hpp), walked
     // by a whole packet (traverse_packet), which hands the boxes that few of
     // its rays enter to those rays one at a time; shadow rays walk it one
     // at a time (traverse_wide).

@@ -1,5 +1,5 @@
 // fast_path_traversal.hpp — part of fast_path.cpp (see fast_path_arrays.hpp):
-// the walks through the 4-wide trees. The slab test's float arithmetic, one
+// the walks through the 8-wide trees. The slab test's float arithmetic, one
 // ray's walk (closest or any hit), and a packet's walk, which hands a box
 // that few of its rays enter to those rays one at a time.
 #pragma once
@@ -94,16 +94,15 @@ template <class T>
     return mask;
 }
 
-// Four floats, one per child of a wide node: gcc's vector extension, which
-// each copy of this file compiles for its own instruction set (SSE, part
-// of every x86-64, holds four).
-typedef float f4 __attribute__((vector_size(16)));
+// Eight floats, one per child of a wide node: gcc's vector extension, which
+// each copy of this file compiles for its own instruction set (two SSE
+// registers in the baseline copy, one AVX register in the others).
+// A row is loaded into a vector the caller holds, not returned: the
+// baseline copy, without AVX, passes a returned 32-byte vector otherwise
+// than the AVX copies do (gcc's -Wpsabi).
+typedef float fw __attribute__((vector_size(4 * wide)));
 
-inline f4 row(const float (&r)[wide]) {
-    f4 v;
-    std::memcpy(&v, r, sizeof v);
-    return v;
-}
+[[gnu::always_inline]] inline void load_row(fw& v, const float (&r)[wide]) { std::memcpy(&v, r, sizeof v); }
 
 // A wide node's child on traverse_wide's stack: where the ray enters its box.
 struct wide_entry {
@@ -134,23 +133,24 @@ struct wide_ray {
 
     // The children of n the ray enters before limit, into hit[], sorted
     // farthest first; returns how many. The ray's slab intervals with the
-    // four child boxes are computed together. The near side of a slab is
+    // eight child boxes are computed together. The near side of a slab is
     // the box's low side when the direction component is positive
     // (reciprocal >= 0) and its high side otherwise, so no min/max is
     // needed; an empty slot's box (low +inf, high -inf) then gives entry
     // +inf and exit -inf and is never entered.
     [[gnu::always_inline]] int entered(const bvh_wide_node& n, float limit, wide_entry (&hit)[wide]) const {
-        f4 enter = {0, 0, 0, 0}, leave = {limit, limit, limit, limit};
+        fw enter = fw{}, leave = fw{} + limit;
         for (int a = 0; a < 3; ++a) {
-            const f4 lo = row(n.lo[a]), hi = row(n.hi[a]);
-            const f4 t0 = ((negative[a] ? hi : lo) - o[a]) * inv[a];
-            const f4 t1 = ((negative[a] ? lo : hi) - o[a]) * inv[a] * slab_widen;
+            fw lo, hi;
+            load_row(lo, n.lo[a]), load_row(hi, n.hi[a]);
+            const fw t0 = ((negative[a] ? hi : lo) - o[a]) * inv[a];
+            const fw t1 = ((negative[a] ? lo : hi) - o[a]) * inv[a] * slab_widen;
             enter = t0 > enter ? t0 : enter;  // NaN (the origin on a face plane of a slab
             leave = t1 < leave ? t1 : leave;  // the ray is parallel to) keeps the old value
         }
         const auto in = enter <= leave;
         int h = 0;
-        for (int i = 0; i < wide; ++i) {  // at most four: insertion sort
+        for (int i = 0; i < wide; ++i) {  // at most eight: insertion sort
             if (!in[i]) continue;
             const wide_entry c{enter[i], n.child[i], n.count[i]};
             int j = h++;
@@ -176,7 +176,9 @@ template <bool AnyHit, class T, class Leaf>
     if (tree.nodes.empty()) return false;
     // best in float, rounded up a little: never below the true value.
     float limit = float(best) * slab_widen;
-    wide_entry stack[512];  // at most wide - 1 per level and the tree is at most ~130 levels deep
+    // At most wide - 1 entries per level, and the tree is at most 130 levels
+    // deep (bvh_build.cpp's max_sah_depth plus log2 of 2^30 objects): 910.
+    wide_entry stack[1024];
     int top = 0;
     wide_entry current = start;
     for (;;) {
@@ -220,7 +222,7 @@ struct packet_entry {
 // The children of wide node n that some of `rays` enter (rays_entering),
 // onto the stack farthest first, so the nearest is walked next: the order
 // of their boxes' centres along d. An inner child's node is asked for now
-// (both of its cache lines), so it is on its way while the rest is tested.
+// (all four of its cache lines), so it is on its way while the rest is tested.
 template <class T>
 [[gnu::always_inline]] inline void push_entered_children(const bvh_wide_tree& tree, const bvh_wide_node& n,
                                                          const packet_slabs& slabs, const T* best_t, std::uint32_t rays,
@@ -235,11 +237,11 @@ template <class T>
         if (in == 0) continue;
         if (n.count[i] == 0) {
             const char* node = reinterpret_cast<const char*>(&tree.nodes[n.child[i]]);
-            __builtin_prefetch(node), __builtin_prefetch(node + 64);
+            for (size_t line = 0; line < sizeof(bvh_wide_node); line += 64) __builtin_prefetch(node + line);
         }
         float x = 0;
         for (int a = 0; a < 3; ++a) x += (b.lo[a] + b.hi[a]) * d[a];
-        int j = h++;  // at most four: insertion sort, farthest first
+        int j = h++;  // at most eight: insertion sort, farthest first
         for (; j > 0 && along[j - 1] < x; --j) entered[j] = entered[j - 1], along[j] = along[j - 1];
         entered[j] = packet_entry{n.child[i], n.count[i], in}, along[j] = x;
     }
@@ -247,7 +249,7 @@ template <class T>
 }
 
 // Depth-first walk of a wide tree for the 32 rays of a packet. A node's
-// four child boxes are tested for every ray (rays_entering, against each
+// eight child boxes are tested for every ray (rays_entering, against each
 // ray's closest hit so far, best_t, which the leaves update as they run);
 // the children some ray enters are pushed, the nearest last so that it is
 // walked first, judged by the boxes' centres along the first ray's
@@ -257,18 +259,20 @@ template <class T>
 // each ray meets every object whose box it enters: the answers do not
 // depend on which walk ran.
 //
-// Why four children, not two: in a tree bigger than the caches each level
-// is a trip to memory, and four children per node halve the levels. On
-// the level-8 sphereflake (48 million spheres, a 1.3 GB tree of depth 35)
-// the binary walk's primary rays took 305 ns each, this walk's 233
-// (rt-bench --flake-only, the two binaries run in turn; tools/bench/README.md).
+// Why eight children, not two: in a tree bigger than the caches each level
+// is a trip to memory, and eight children per node take a third of the
+// levels. On the level-8 sphereflake (48 million spheres, a tree of depth
+// 35 and 1.2-1.4 GB) the binary walk's primary rays took 305 ns each and
+// the walk of four children 233 (3 Dec 2026); eight gave 11.96-12.45
+// Mrays/s against four's 10.23-10.26 (6 Dec 2026; rt-bench --flake-only,
+// the binaries run in turn; tools/bench/README.md).
 template <class T, class Leaf, class LeafOne>
 [[gnu::always_inline]] inline void traverse_packet(const bvh_wide_tree& tree, const packet<T>& p, const T* best_t, Leaf&& leaf,
                                                    LeafOne&& leaf_one) {
     if (tree.nodes.empty()) return;
     const packet_slabs slabs(p);
     const float d0[3] = {float(p.dx[0]), float(p.dy[0]), float(p.dz[0])};
-    packet_entry stack[512];  // at most wide - 1 per level, as traverse_wide's
+    packet_entry stack[1024];  // at most wide - 1 per level and one more, as traverse_wide's
     int top = 0;
     stack[top++] = packet_entry{0, 0, ~std::uint32_t(0)};  // the root, for every ray
     while (top > 0) {
