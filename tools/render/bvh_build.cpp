@@ -28,7 +28,6 @@ namespace {
 
 constexpr int max_bins = 16;
 constexpr size_t min_leaf = 4;
-constexpr size_t max_sah_depth = 100;
 constexpr size_t parallel_bin_threshold = size_t(1) << 18;  // bigger nodes bin in parallel chunks
 constexpr size_t task_size = size_t(1) << 17;                // smaller subtrees are one task each
 
@@ -301,11 +300,9 @@ private:
         // split adds two 32-byte nodes (48 million spheres in leaves of one
         // would need 3 GB of nodes).
         if (n <= min_leaf) return false;
-        // The traversals keep a stack of 256 nodes: past depth 100 (not
-        // reached on any scene tried: 48 million spheres give 49, and float's
-        // range keeps even exponentially spaced objects near 30) a node is
-        // halved by count, so the tree is never deeper than 100 + log2(N).
-        if (j.depth >= max_sah_depth) return halve(j, left, right);
+        // Past bvh_max_sah_depth a node is halved by count, so the tree is
+        // never deeper than bvh_max_depth, which the walks' stacks are sized for.
+        if (j.depth >= bvh_max_sah_depth) return halve(j, left, right);
         int axis = 0;
         for (int a = 1; a < 3; ++a)
             if (j.centres.hi[a] - j.centres.lo[a] > j.centres.hi[axis] - j.centres.lo[axis]) axis = a;
@@ -366,7 +363,8 @@ bvh_tree build_bvh(size_t count, const std::function<bvh_box(size_t)>& box_of, i
     bvh_tree tree;
     if (count == 0) return tree;
     // Node numbers and object numbers are 32-bit: room for 2 * count nodes.
-    if (count > (size_t(1) << 30)) throw std::length_error("build_bvh: more than 2^30 objects in one tree");
+    if (count > (size_t(1) << bvh_max_objects_log2))
+        throw std::length_error("build_bvh: more than 2^30 objects in one tree");
     // The records and the root's bounds, in chunks on every core (a
     // big_vector is not written before this: its pages are first touched
     // here, on both cores).

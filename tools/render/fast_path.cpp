@@ -39,7 +39,7 @@
 // The parts, in the order they build on each other (each is included below,
 // inside this copy's namespace):
 //   fast_path_arrays.hpp      the packet, the per-ray terms and closest hits, the scene's arrays and trees
-//   fast_path_traversal.hpp   slab tests and the walks of the binary and the 8-wide tree
+//   fast_path_traversal.hpp   slab tests and the walks of the 8-wide tree (one ray, a packet)
 //   fast_path_spheres.hpp     sphere kernels and their lane loops (closest and any hit)
 //   fast_path_planes.hpp      plane lane loops (kernels in fast_path_kernels.hpp)
 //   fast_path_triangles.hpp   triangle lane loops, brute force and in the wide tree

@@ -161,6 +161,12 @@ struct wide_ray {
     }
 };
 
+// The walks' stacks: a node's children but the one walked next wait there,
+// at most wide - 1 a level, over at most bvh_max_depth levels, plus the
+// root (traverse_packet pushes it).
+constexpr size_t wide_walk_stack = 1024;
+static_assert((wide - 1) * bvh_max_depth + 1 <= wide_walk_stack, "a walk's stack holds the deepest tree's");
+
 // Depth-first walk of a wide tree for one ray, nearest child first. Of the
 // children a node's ray enters before its current limit, all but the
 // nearest are pushed, farthest first, each with its entry distance, and the
@@ -176,9 +182,7 @@ template <bool AnyHit, class T, class Leaf>
     if (tree.nodes.empty()) return false;
     // best in float, rounded up a little: never below the true value.
     float limit = float(best) * slab_widen;
-    // At most wide - 1 entries per level, and the tree is at most 130 levels
-    // deep (bvh_build.cpp's max_sah_depth plus log2 of 2^30 objects): 910.
-    wide_entry stack[1024];
+    wide_entry stack[wide_walk_stack];
     int top = 0;
     wide_entry current = start;
     for (;;) {
@@ -272,7 +276,7 @@ template <class T, class Leaf, class LeafOne>
     if (tree.nodes.empty()) return;
     const packet_slabs slabs(p);
     const float d0[3] = {float(p.dx[0]), float(p.dy[0]), float(p.dz[0])};
-    packet_entry stack[1024];  // at most wide - 1 per level and one more, as traverse_wide's
+    packet_entry stack[wide_walk_stack];
     int top = 0;
     stack[top++] = packet_entry{0, 0, ~std::uint32_t(0)};  // the root, for every ray
     while (top > 0) {

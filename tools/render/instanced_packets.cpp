@@ -128,7 +128,7 @@ private:
     void walk_tree() {
         const bvh_tree& tree = level_.tree;
         const double d0[3] = {p_.dx[0], p_.dy[0], p_.dz[0]};  // the packet's first ray judges near and far
-        std::uint32_t stack[128];
+        std::uint32_t stack[bvh_binary_walk_stack];
         int top = 0;
         const bvh_node& root = tree.nodes[0];
         if (root.count > 0) leaf(root);

@@ -189,7 +189,7 @@ public:
         const size_t spheres = level.spheres.size(), triangles = level.triangles.size();
         const double d_max = triangles > 0 ? direction_max(dir.x, dir.y, dir.z) : 0;  // only triangles use it
         bool found = false;
-        waiting stack[128];
+        waiting stack[bvh_binary_walk_stack];
         int top = 0;
         const double root = test_root ? slabs.entry(level.tree.nodes[0].box, tmin, best.t) : tmin;
         if (root < best.t) stack[top++] = {0, root};
@@ -264,7 +264,7 @@ public:
         const slab_ray slabs(org, dir);
         const double a = dot(dir, dir), d_max = direction_max(dir.x, dir.y, dir.z);
         const size_t spheres = level.spheres.size(), triangles = level.triangles.size();
-        std::uint32_t stack[128];
+        std::uint32_t stack[bvh_binary_walk_stack];
         int top = 0;
         stack[top++] = 0;
         while (top > 0) {
