@@ -133,9 +133,9 @@ double best_seconds_per_pass(const std::function<void()>& pass, int repeat) {
     return best_seconds([&] { for (int i = 0; i < passes; ++i) pass(); }, repeat) / passes;
 }
 
-// The same for a render or trace that builds its own arrays and trees
-// first and reports that setup in the render_stats it is given: each run is
-// timed without its setup, so the figure is the tracing alone. (A build
+// The same for a render that builds its own arrays and trees first and
+// reports that setup in the render_stats it is given: each run is timed
+// without its setup, so the figure is the tracing and shading alone. (A build
 // timed in another run of the sphereflake differs by up to two seconds,
 // more than its tracing.)
 double best_seconds_after_setup(const std::function<void(render_stats&)>& f, int repeat) {
